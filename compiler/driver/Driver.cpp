@@ -1,0 +1,144 @@
+#include "driver/Driver.h"
+
+#include <pthread.h>
+
+#include <chrono>
+#include <filesystem>
+#include <sstream>
+
+#include "parse/Parser.h"
+
+namespace fs = std::filesystem;
+
+namespace stc {
+
+// Generated from stdlib-motion/iec/*.st at configure time (StdlibSources.cpp).
+struct EmbeddedSource { const char* name; const char* text; };
+extern const EmbeddedSource kStdlibSources[];
+extern const size_t kStdlibSourceCount;
+
+Compilation::Compilation() : diags_(sm_), ast_(std::make_unique<ast::ASTContext>()) {}
+Compilation::~Compilation() = default;
+
+void Compilation::addBuffer(const std::string& name, std::string text) {
+  files_.push_back(sm_.addBuffer(name, std::move(text)));
+}
+
+bool Compilation::addPath(const std::string& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) {
+    ProjectConfig pc;
+    std::string error;
+    if (!fs::exists(fs::path(path) / "project.toml")) {
+      diags_.error(SourceLoc{}, "'" + path + "' is a directory without project.toml; pass .st files or a project directory", "input");
+      return false;
+    }
+    if (!loadProject(path, pc, error)) {
+      diags_.error(SourceLoc{}, error, "project");
+      return false;
+    }
+    if (pc.dialect) projectDialect_ = pc.dialect;
+    projectDefines_.insert(projectDefines_.end(), pc.defines.begin(), pc.defines.end());
+    bool ok = true;
+    for (const std::string& s : pc.sources) ok = addPath(s) && ok;
+    return ok;
+  }
+  std::string error;
+  uint32_t id = sm_.loadFile(path, error);
+  if (!id) {
+    diags_.error(SourceLoc{}, path + ": " + error, "input");
+    return false;
+  }
+  files_.push_back(id);
+  return true;
+}
+
+static std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+bool Compilation::check(const CompileOptions& opts) {
+  using clock = std::chrono::steady_clock;
+  dialect_ = opts.dialect ? *opts.dialect : projectDialect_ ? *projectDialect_ : sema::Dialect::IEC;
+  ParseOptions popts;
+  popts.defines = opts.defines;
+  for (const std::string& d : projectDefines_) popts.defines.insert(lower(d));
+  std::vector<uint32_t> all;
+  if (opts.includeStdlib)
+    for (size_t i = 0; i < kStdlibSourceCount; ++i) all.push_back(sm_.addBuffer(kStdlibSources[i].name, kStdlibSources[i].text));
+  all.insert(all.end(), files_.begin(), files_.end());
+
+  auto t0 = clock::now();
+  bool parsed = true;
+  for (uint32_t f : all) {
+    ParseStats ps;
+    parsed = parseFile(sm_, f, diags_, *ast_, popts, &ps) && parsed;
+    stats_.tokens += ps.tokens;
+    stats_.llFallback = stats_.llFallback || ps.usedLLFallback;
+    stats_.bytes += sm_.file(f).text.size();
+    stats_.lines += sm_.lineCount(f);
+    ++stats_.files;
+  }
+  // A file holding only VAR_GLOBAL blocks is a GVL named after the file.
+  for (ast::SourceUnit& u : ast_->units()) {
+    bool onlyGlobals = !u.decls.empty();
+    for (ast::Decl* d : u.decls) onlyGlobals = onlyGlobals && ast::isa<ast::GlobalVarDecl>(d);
+    if (!onlyGlobals) continue;
+    std::string stem = fs::path(sm_.file(u.file).path).stem().string();
+    bool ident = !stem.empty() && (std::isalpha(static_cast<unsigned char>(stem[0])) || stem[0] == '_');
+    for (char c : stem) ident = ident && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
+    if (!ident) continue;
+    for (ast::Decl* d : u.decls) {
+      auto* g = ast::cast<ast::GlobalVarDecl>(d);
+      g->listName.name = stem;
+      g->listName.range = SourceRange(SourceLoc{u.file, 0});
+    }
+  }
+  auto t1 = clock::now();
+  stats_.parseSeconds = std::chrono::duration<double>(t1 - t0).count();
+  if (!parsed) return false;   // semantic analysis of a broken tree only repeats the syntax errors
+  sema::SemaOptions so;
+  so.dialect = dialect_;
+  sema::Sema sema(*ast_, diags_, so);
+  bool ok = sema.run();
+  stats_.semaSeconds = std::chrono::duration<double>(clock::now() - t1).count();
+  return ok && !diags_.hasErrors();
+}
+
+void runWithLargeStack(const std::function<void()>& fn) {
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  pthread_attr_setstacksize(&attr, 512u << 20);
+  pthread_t th;
+  auto* heapFn = new std::function<void()>(fn);
+  auto tramp = [](void* p) -> void* {
+    auto* f = static_cast<std::function<void()>*>(p);
+    (*f)();
+    return nullptr;
+  };
+  if (pthread_create(&th, &attr, tramp, heapFn) != 0) {
+    fn();
+  } else {
+    pthread_join(th, nullptr);
+  }
+  delete heapFn;
+  pthread_attr_destroy(&attr);
+}
+
+CompileOptions optionsFromFileHeader(const std::string& text, CompileOptions base) {
+  size_t p = text.find("stc-options:");
+  if (p == std::string::npos) return base;
+  size_t e = text.find_first_of("\r\n", p);
+  std::istringstream in(text.substr(p + 12, e == std::string::npos ? std::string::npos : e - p - 12));
+  std::string tok;
+  while (in >> tok) {
+    if (tok == "--dialect=codesys") base.dialect = sema::Dialect::Codesys;
+    else if (tok == "--dialect=iec") base.dialect = sema::Dialect::IEC;
+    else if (tok == "-D" && in >> tok) base.defines.insert(lower(tok));
+    else if (tok.rfind("-D", 0) == 0) base.defines.insert(lower(tok.substr(2)));
+  }
+  return base;
+}
+
+}  // namespace stc

@@ -1,0 +1,82 @@
+// The compilation driver: turns command-line inputs (files or project
+// directories) into a checked AST, and renders diagnostics.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "ast/AST.h"
+#include "basic/Diagnostics.h"
+#include "sema/Sema.h"
+
+namespace stc {
+
+// project.toml, as far as compilation is concerned (docs/projects.md).
+struct ProjectConfig {
+  std::string root;                      // directory holding project.toml
+  std::string name;
+  std::optional<sema::Dialect> dialect;
+  std::vector<std::string> defines;
+  std::vector<std::string> sources;      // absolute or root-relative paths, sorted
+};
+
+// Reads `dir/project.toml` and lists its sources (src/**/*.st, *.exp, *.txt).
+bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error);
+
+struct CompileOptions {
+  std::optional<sema::Dialect> dialect;  // overrides the project's
+  std::set<std::string> defines;         // lower-case
+  bool includeStdlib = true;             // the IEC standard FB declarations
+};
+
+struct CompileStats {
+  size_t files = 0, lines = 0, tokens = 0, bytes = 0;
+  double parseSeconds = 0, semaSeconds = 0;
+  bool llFallback = false;
+};
+
+class Compilation {
+public:
+  Compilation();
+  ~Compilation();
+
+  SourceManager& sources() { return sm_; }
+  DiagnosticsEngine& diags() { return diags_; }
+  ast::ASTContext& ast() { return *ast_; }
+
+  // Adds inputs: .st/.exp/.txt files or project directories.
+  bool addPath(const std::string& path);
+  // Adds an in-memory file (tests, benchmarks, fuzzing).
+  void addBuffer(const std::string& name, std::string text);
+
+  // Parses everything and, if parsing succeeded, runs semantic analysis.
+  bool check(const CompileOptions& opts);
+  const CompileStats& stats() const { return stats_; }
+  sema::Dialect dialect() const { return dialect_; }
+
+private:
+  SourceManager sm_;
+  DiagnosticsEngine diags_;
+  std::unique_ptr<ast::ASTContext> ast_;
+  std::vector<uint32_t> files_;
+  std::optional<sema::Dialect> projectDialect_;
+  std::vector<std::string> projectDefines_;
+  sema::Dialect dialect_ = sema::Dialect::IEC;
+  CompileStats stats_;
+};
+
+// Runs `fn` on a thread with a large stack, so that deeply nested input
+// cannot overflow it.
+void runWithLargeStack(const std::function<void()>& fn);
+
+// -verify: checks the diagnostics against `expected-error {{...}}` comments
+// in the sources.  Prints mismatches to `out`; returns true if all match.
+bool verifyDiagnostics(Compilation& c, std::string& out);
+
+// Options written in a source file as `stc-options: --dialect=codesys -D X`.
+CompileOptions optionsFromFileHeader(const std::string& text, CompileOptions base);
+
+}  // namespace stc

@@ -1,0 +1,56 @@
+#include <algorithm>
+#include <filesystem>
+#include <toml++/toml.h>
+
+#include "driver/Driver.h"
+
+namespace fs = std::filesystem;
+
+namespace stc {
+
+static bool isSourceFile(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".st" || ext == ".exp" || ext == ".txt";
+}
+
+bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error) {
+  fs::path root(dir);
+  fs::path manifest = root / "project.toml";
+  out.root = root.string();
+  toml::table tbl;
+  try {
+    tbl = toml::parse_file(manifest.string());
+  } catch (const toml::parse_error& e) {
+    const auto& src = e.source();
+    error = manifest.string() + ":" + std::to_string(src.begin.line) + ":" + std::to_string(src.begin.column) + ": " +
+            std::string(e.description());
+    return false;
+  }
+  out.name = tbl["project"]["name"].value_or(root.filename().string());
+  if (auto d = tbl["build"]["dialect"].value<std::string>()) {
+    if (*d == "iec") out.dialect = sema::Dialect::IEC;
+    else if (*d == "codesys") out.dialect = sema::Dialect::Codesys;
+    else {
+      error = manifest.string() + ": [build] dialect must be \"iec\" or \"codesys\", not \"" + *d + "\"";
+      return false;
+    }
+  }
+  if (auto* defs = tbl["build"]["defines"].as_array())
+    for (auto& d : *defs)
+      if (auto s = d.value<std::string>()) out.defines.push_back(*s);
+  fs::path src = root / "src";
+  std::error_code ec;
+  if (fs::is_directory(src, ec)) {
+    for (auto it = fs::recursive_directory_iterator(src, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
+      if (it->is_regular_file() && isSourceFile(it->path())) out.sources.push_back(it->path().string());
+  }
+  std::sort(out.sources.begin(), out.sources.end());
+  if (out.sources.empty()) {
+    error = (root / "src").string() + ": the project has no sources (src/*.st)";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace stc

@@ -1,0 +1,68 @@
+// Shared between the files of compiler/parse only (includes ANTLR).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "STLexer.h"
+#include "STParser.h"
+#include "antlr4-runtime.h"
+#include "parse/Parser.h"
+
+namespace stc::parse {
+
+using grammar::STLexer;
+using grammar::STParser;
+
+// A char stream over raw bytes: one "code point" per byte, so ANTLR token
+// indices are byte offsets into the SourceFile text.  Non-ASCII bytes only
+// occur in comments, strings and error tokens; their text is taken from the
+// source buffer, never from ANTLR.
+class ByteInputStream : public antlr4::ANTLRInputStream {
+public:
+  explicit ByteInputStream(const std::string& bytes, const std::string& name) {
+    _data.resize(bytes.size());
+    for (size_t i = 0; i < bytes.size(); ++i) _data[i] = static_cast<unsigned char>(bytes[i]);
+    name_ = name;
+    p = 0;
+  }
+  std::string getSourceName() const override { return name_; }
+
+private:
+  std::string name_;
+};
+
+// Result of the lexing stage for one file.
+struct LexedFile {
+  // Tokens keep pointers to their lexer and char stream (ANTLR's error
+  // recovery follows them), so both live as long as the tokens.
+  std::unique_ptr<ByteInputStream> input;
+  std::unique_ptr<STLexer> lexer;
+  std::vector<std::unique_ptr<antlr4::Token>> tokens;   // default channel, then EOF
+  std::map<uint32_t, std::vector<ast::Pragma>> attributesAt;  // offset of the next token -> attributes
+};
+
+// Rewrites full-width punctuation to ASCII in place (warning + fix-it).
+void normalizeFullWidth(SourceFile& file, DiagnosticsEngine& diags);
+
+// Lexes, drops trivia, reports bad characters, unterminated comments and
+// strings, evaluates pragmas and conditional compilation.
+void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOptions& opts, LexedFile& out);
+
+// Builds the AST of one compilation unit.
+void buildAST(STParser::CompilationUnitContext* cu, const SourceFile& file, const LexedFile& lexed,
+              DiagnosticsEngine& diags, ast::ASTContext& ctx, ast::SourceUnit& unit);
+
+// Error strategy producing clang-style syntax diagnostics.
+std::shared_ptr<antlr4::DefaultErrorStrategy> makeErrorStrategy(const SourceFile& file, DiagnosticsEngine& diags);
+
+inline SourceLoc locOf(uint32_t file, const antlr4::Token* t) {
+  return {file, static_cast<uint32_t>(t->getStartIndex())};
+}
+inline SourceRange rangeOf(uint32_t file, const antlr4::Token* t) {
+  if (t->getType() == antlr4::Token::EOF) return SourceRange({file, static_cast<uint32_t>(t->getStartIndex())});
+  return {{file, static_cast<uint32_t>(t->getStartIndex())}, {file, static_cast<uint32_t>(t->getStopIndex() + 1)}};
+}
+
+}  // namespace stc::parse

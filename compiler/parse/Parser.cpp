@@ -1,0 +1,89 @@
+// Parse driver: normalise -> lex -> parse (SLL, then LL on failure) -> AST.
+#include "parse/Parser.h"
+
+#include "parse/ParseInternal.h"
+
+namespace stc {
+
+using namespace parse;
+
+namespace {
+
+// Deeply nested input would overflow the recursive-descent parser's stack.
+// Brackets deeper than this are reported instead of parsed.
+constexpr int kMaxNesting = 256;
+
+// The SLL stage reports nothing: a failure only means "retry with LL".
+class SilentBail : public antlr4::BailErrorStrategy {
+public:
+  void reportError(antlr4::Parser*, const antlr4::RecognitionException&) override {}
+};
+
+bool checkNesting(const SourceFile& file, const LexedFile& lexed, DiagnosticsEngine& diags) {
+  int depth = 0;
+  for (const auto& t : lexed.tokens) {
+    size_t ty = t->getType();
+    if (ty == STLexer::LPAREN || ty == STLexer::LBRACKET) {
+      if (++depth > kMaxNesting) {
+        diags.error(locOf(file.id, t.get()), "brackets nested more than " + std::to_string(kMaxNesting) + " levels deep", "nesting");
+        return false;
+      }
+    } else if (ty == STLexer::RPAREN || ty == STLexer::RBRACKET) {
+      if (depth > 0) --depth;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+bool parseFile(SourceManager& sm, uint32_t fileId, DiagnosticsEngine& diags, ast::ASTContext& ctx,
+               const ParseOptions& opts, ParseStats* stats) {
+  SourceFile& file = sm.file(fileId);
+  unsigned errorsBefore = diags.errorCount();
+  try {
+    normalizeFullWidth(file, diags);
+    LexedFile lexed;
+    lexFile(file, diags, opts, lexed);
+    if (stats) stats->tokens += lexed.tokens.size();
+    if (!checkNesting(file, lexed, diags)) return false;
+
+    // ListTokenSource takes the tokens; keep raw pointers for the builder's
+    // attribute lookups (only offsets are needed, which live in lexed).
+    std::vector<std::unique_ptr<antlr4::Token>> toks = std::move(lexed.tokens);
+    antlr4::ListTokenSource source(std::move(toks));
+    antlr4::CommonTokenStream stream(&source);
+    STParser parser(&stream);
+    parser.removeErrorListeners();
+
+    // Stage 1: SLL with bail-out; almost every valid file parses here.
+    parser.getInterpreter<antlr4::atn::ParserATNSimulator>()->setPredictionMode(antlr4::atn::PredictionMode::SLL);
+    parser.setErrorHandler(std::make_shared<SilentBail>());
+    STParser::CompilationUnitContext* cu = nullptr;
+    try {
+      cu = parser.compilationUnit();
+    } catch (antlr4::ParseCancellationException&) {
+      cu = nullptr;
+    }
+    if (!cu) {
+      // Stage 2: full LL with error recovery and our diagnostics.
+      if (stats) stats->usedLLFallback = true;
+      stream.seek(0);
+      parser.reset();
+      parser.getInterpreter<antlr4::atn::ParserATNSimulator>()->setPredictionMode(antlr4::atn::PredictionMode::LL);
+      parser.setErrorHandler(makeErrorStrategy(file, diags));
+      cu = parser.compilationUnit();
+    }
+    ctx.units().push_back({});
+    ast::SourceUnit& unit = ctx.units().back();
+    unit.file = fileId;
+    if (cu) buildAST(cu, file, lexed, diags, ctx, unit);
+  } catch (std::exception& e) {
+    diags.error(SourceLoc{fileId, 0}, std::string("internal parser error: ") + e.what(), "internal");
+  } catch (...) {
+    diags.error(SourceLoc{fileId, 0}, "internal parser error", "internal");
+  }
+  return diags.errorCount() == errorsBefore;
+}
+
+}  // namespace stc

@@ -1,0 +1,27 @@
+// Parsing: source text -> AST.  The ANTLR parser is an implementation detail
+// of this stage; nothing outside compiler/parse includes ANTLR headers.
+#pragma once
+
+#include <set>
+#include <string>
+
+#include "ast/AST.h"
+#include "basic/Diagnostics.h"
+
+namespace stc {
+
+struct ParseOptions {
+  std::set<std::string> defines;   // lower-case names for {IF defined(...)}
+};
+
+struct ParseStats {
+  size_t tokens = 0;
+  bool usedLLFallback = false;
+};
+
+// Parses one loaded file into `ctx` (appends a SourceUnit).  Reports every
+// problem through `diags`; never throws.  Returns false on syntax errors.
+bool parseFile(SourceManager& sm, uint32_t file, DiagnosticsEngine& diags, ast::ASTContext& ctx,
+               const ParseOptions& opts, ParseStats* stats = nullptr);
+
+}  // namespace stc

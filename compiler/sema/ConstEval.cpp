@@ -1,0 +1,132 @@
+// Constant evaluation on checked expressions: literals, CONSTANT variables,
+// enumeration values and arithmetic on them.  Used for array bounds, string
+// lengths, subranges, enumeration values and CASE labels.
+#include <cmath>
+
+#include "sema/SemaInternal.h"
+
+namespace stc::sema {
+
+std::optional<ConstValue> SemaImpl::evalConst(Expr* e, const Context& ctx) {
+  if (!e) return std::nullopt;
+  if (auto* l = dyn_cast<LiteralExpr>(e)) {
+    ConstValue v;
+    switch (l->litKind) {
+      case LiteralExpr::Int:
+        v.kind = ConstValue::Int;
+        v.i = l->negative ? -static_cast<int64_t>(l->intValue) : static_cast<int64_t>(l->intValue);
+        if (!l->negative && l->intValue > static_cast<uint64_t>(INT64_MAX)) v.isUnsignedBig = true;
+        if (e->type && e->type->isBool()) v.kind = ConstValue::Bool;
+        return v;
+      case LiteralExpr::Real: v.kind = ConstValue::Real; v.r = l->realValue; return v;
+      case LiteralExpr::Bool: v.kind = ConstValue::Bool; v.i = static_cast<int64_t>(l->intValue); return v;
+      case LiteralExpr::Enum: v.kind = ConstValue::Int; v.i = static_cast<int64_t>(l->intValue); return v;
+      case LiteralExpr::Time: v.kind = ConstValue::Int; v.i = static_cast<int64_t>(l->intValue); return v;
+      default: return std::nullopt;
+    }
+  }
+  const Symbol* sym = nullptr;
+  if (auto* n = dyn_cast<NameExpr>(e)) sym = n->symbol;
+  else if (auto* m = dyn_cast<MemberExpr>(e)) {
+    sym = m->symbol;
+    // E.value of an enumeration type.
+    if (!sym && m->type && m->type->kind == TypeKind::Enum) {
+      for (auto& [name, val] : m->type->enumValues)
+        if (upperCase(name) == upperCase(m->member.name)) { ConstValue v; v.i = val; return v; }
+    }
+  }
+  if (sym) {
+    if (sym->kind == Symbol::EnumValue) { ConstValue v; v.i = sym->enumValue; return v; }
+    if (sym->kind == Symbol::Variable && sym->var && sym->var->isConstant && sym->var->init) {
+      auto* s = const_cast<Symbol*>(sym);
+      if (s->resolving) {
+        diags_.error(e->range.begin, "constant '" + sym->name + "' depends on itself", "not-constant").range(e->range);
+        return std::nullopt;
+      }
+      Context declCtx = ctx;
+      auto it = outerScope_.find(s);
+      if (it != outerScope_.end()) declCtx = Context{nullptr, it->second};
+      s->resolving = true;
+      if (!s->type) s->type = resolveType(s->var->type, declCtx);
+      if (!sym->var->init->type) checkExpr(sym->var->init, declCtx, s->type);
+      auto v = evalConst(sym->var->init, declCtx);
+      s->resolving = false;
+      return v;
+    }
+    return std::nullopt;
+  }
+  if (auto* u = dyn_cast<UnaryExpr>(e)) {
+    auto v = evalConst(u->operand, ctx);
+    if (!v) return v;
+    if (u->op == UnaryOp::Neg) { if (v->kind == ConstValue::Real) v->r = -v->r; else v->i = -v->i; }
+    else if (u->op == UnaryOp::Not) { if (v->kind == ConstValue::Bool) v->i = !v->i; else v->i = ~v->i; }
+    return v;
+  }
+  if (auto* b = dyn_cast<BinaryExpr>(e)) {
+    auto l = evalConst(b->lhs, ctx);
+    auto r = evalConst(b->rhs, ctx);
+    if (!l || !r) return std::nullopt;
+    ConstValue v;
+    bool real = l->kind == ConstValue::Real || r->kind == ConstValue::Real;
+    auto boolean = [&](bool x) { ConstValue c; c.kind = ConstValue::Bool; c.i = x; return c; };
+    switch (b->op) {
+      case BinaryOp::Add: if (real) { v.kind = ConstValue::Real; v.r = l->asReal() + r->asReal(); } else v.i = static_cast<int64_t>(static_cast<uint64_t>(l->i) + static_cast<uint64_t>(r->i)); return v;
+      case BinaryOp::Sub: if (real) { v.kind = ConstValue::Real; v.r = l->asReal() - r->asReal(); } else v.i = static_cast<int64_t>(static_cast<uint64_t>(l->i) - static_cast<uint64_t>(r->i)); return v;
+      case BinaryOp::Mul: if (real) { v.kind = ConstValue::Real; v.r = l->asReal() * r->asReal(); } else v.i = static_cast<int64_t>(static_cast<uint64_t>(l->i) * static_cast<uint64_t>(r->i)); return v;
+      case BinaryOp::Div:
+        if (real) { v.kind = ConstValue::Real; v.r = l->asReal() / r->asReal(); return v; }
+        if (r->i == 0) {
+          diags_.error(b->opLoc, "division by zero in a constant expression", "division-by-zero").range(b->range);
+          return std::nullopt;
+        }
+        if (l->i == INT64_MIN && r->i == -1) return std::nullopt;
+        v.i = l->i / r->i;
+        return v;
+      case BinaryOp::Mod:
+        if (real) return std::nullopt;
+        if (r->i == 0) {
+          diags_.error(b->opLoc, "division by zero in a constant expression", "division-by-zero").range(b->range);
+          return std::nullopt;
+        }
+        if (l->i == INT64_MIN && r->i == -1) { v.i = 0; return v; }
+        v.i = l->i % r->i;
+        return v;
+      case BinaryOp::Pow: v.kind = ConstValue::Real; v.r = std::pow(l->asReal(), r->asReal()); return v;
+      case BinaryOp::Lt: return boolean(l->asReal() < r->asReal());
+      case BinaryOp::Gt: return boolean(l->asReal() > r->asReal());
+      case BinaryOp::Le: return boolean(l->asReal() <= r->asReal());
+      case BinaryOp::Ge: return boolean(l->asReal() >= r->asReal());
+      case BinaryOp::Eq: return boolean(real ? l->asReal() == r->asReal() : l->i == r->i);
+      case BinaryOp::Ne: return boolean(real ? l->asReal() != r->asReal() : l->i != r->i);
+      case BinaryOp::And: case BinaryOp::AndThen: v = *l; v.i = l->i & r->i; return v;
+      case BinaryOp::Or: case BinaryOp::OrElse: v = *l; v.i = l->i | r->i; return v;
+      case BinaryOp::Xor: v = *l; v.i = l->i ^ r->i; return v;
+    }
+  }
+  if (auto* c = dyn_cast<CallExpr>(e)) {
+    // Conversions between integer types keep constant values (INT_TO_DINT(5)).
+    if (c->target && c->target->kind == Symbol::BuiltinFunction && c->args.size() == 1 && c->args[0].value &&
+        c->target->name.find("_TO_") != std::string::npos && e->type && e->type->isInteger()) {
+      auto v = evalConst(c->args[0].value, ctx);
+      if (v && v->kind == ConstValue::Real) { v->kind = ConstValue::Int; v->i = static_cast<int64_t>(std::llround(v->r)); }
+      return v;
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<int64_t> SemaImpl::evalInt(Expr* e, const Context& ctx, const char* what) {
+  if (!e || (e->type && e->type->isError())) return std::nullopt;
+  auto v = evalConst(e, ctx);
+  if (!v) {
+    diags_.error(e->range.begin, std::string(what) + " must be a constant expression", "not-constant").range(e->range);
+    return std::nullopt;
+  }
+  if (v->kind == ConstValue::Real) {
+    diags_.error(e->range.begin, std::string(what) + " must be an integer, not a real number", "not-constant").range(e->range);
+    return std::nullopt;
+  }
+  return v->i;
+}
+
+}  // namespace stc::sema

@@ -1,0 +1,31 @@
+// Semantic analysis: name resolution, type checking and the IEC rules.
+// Runs over every SourceUnit of an ASTContext, annotating the AST in place.
+#pragma once
+
+#include <memory>
+
+#include "ast/AST.h"
+#include "basic/Diagnostics.h"
+
+namespace stc::sema {
+
+enum class Dialect { IEC, Codesys };
+
+struct SemaOptions {
+  Dialect dialect = Dialect::IEC;
+};
+
+class SemaImpl;
+
+class Sema {
+public:
+  Sema(ast::ASTContext& ctx, DiagnosticsEngine& diags, SemaOptions opts);
+  ~Sema();
+  // Returns false if errors were reported.
+  bool run();
+
+private:
+  std::unique_ptr<SemaImpl> impl_;
+};
+
+}  // namespace stc::sema
