@@ -163,7 +163,11 @@ LBRACKET : '[' ;
 RBRACKET : ']' ;
 
 // ---- trivia
-// (* *) and /* */ nest (CODESYS allows nesting of both).
+// (* *) and /* */ nest (CODESYS allows nesting of both).  The compiler lexes
+// with the hand-written compiler/parse/FastLexer.cpp, which produces the same
+// tokens as these rules (checked by tests/unit/LexerTest.cpp) except that it
+// nests comments strictly: "(* a (* b *) c" is unterminated, where these
+// non-greedy rules would end the comment at the first "*)".
 BLOCK_COMMENT : '(*' ( BLOCK_COMMENT | C_COMMENT | . )*? '*)' -> channel(COMMENTS) ;
 C_COMMENT : '/*' ( C_COMMENT | BLOCK_COMMENT | . )*? '*/' -> channel(COMMENTS) ;
 LINE_COMMENT : '//' ~[\r\n]* -> channel(COMMENTS) ;

@@ -160,11 +160,11 @@ statement
 // CASE bodies cannot hold labels: `Red:` there starts the next case element.
 caseBody : unlabeledStatement* ;
 
+// Statements that start with an expression share one alternative; the token
+// after the expression decides (LL(1)) instead of a prediction over the whole
+// left-hand side, which keeps parsing fast.
 unlabeledStatement
-    : lhs=expression ASSIGN rhs=expression SEMI                    # assignStmt
-    | lhs=expression REF_ASSIGN rhs=expression SEMI                # refAssignStmt
-    | lhs=expression op=IDENTIFIER EQ rhs=expression SEMI          # setResetStmt
-    | expression SEMI                                              # exprStmt
+    : lhs=expression ( op=( ASSIGN | REF_ASSIGN ) rhs=expression | sr=IDENTIFIER EQ rhs=expression )? SEMI   # exprBasedStmt
     | IF expression THEN body elsifPart* ( ELSE elseBody=body )? END_IF     # ifStmt
     | CASE expression OF caseElement* ( ELSE elseBody=body )? END_CASE      # caseStmt
     | FOR IDENTIFIER ASSIGN from=expression TO to=expression ( BY by=expression )? DO body END_FOR  # forStmt

@@ -430,6 +430,14 @@ public:
   }
   std::vector<SourceUnit>& units() { return units_; }
   size_t nodeCount() const { return nodes_.size(); }
+  // Takes over the nodes and units of a context filled on another thread.
+  void adopt(ASTContext&& other) {
+    nodes_.reserve(nodes_.size() + other.nodes_.size());
+    for (auto& n : other.nodes_) nodes_.push_back(std::move(n));
+    for (auto& u : other.units_) units_.push_back(std::move(u));
+    other.nodes_.clear();
+    other.units_.clear();
+  }
 
 private:
   std::vector<std::unique_ptr<Node>> nodes_;

@@ -2,7 +2,9 @@
 
 #include <pthread.h>
 
+#include <atomic>
 #include <chrono>
+#include <thread>
 #include <filesystem>
 #include <sstream>
 
@@ -70,14 +72,43 @@ bool Compilation::check(const CompileOptions& opts) {
   all.insert(all.end(), files_.begin(), files_.end());
 
   auto t0 = clock::now();
+  // Files are parsed in parallel, each into its own AST arena and
+  // diagnostics list; results are merged in input order, so the output does
+  // not depend on scheduling.
+  struct FileResult {
+    std::unique_ptr<ast::ASTContext> ast;
+    std::unique_ptr<DiagnosticsEngine> diags;
+    ParseStats stats;
+    bool ok = true;
+  };
+  std::vector<FileResult> results(all.size());
+  std::atomic<size_t> next{0};
+  auto worker = [&] {
+    for (size_t i = next++; i < all.size(); i = next++) {
+      FileResult& r = results[i];
+      r.ast = std::make_unique<ast::ASTContext>();
+      r.diags = std::make_unique<DiagnosticsEngine>(sm_);
+      r.diags->opts.errorLimit = 0;
+      r.ok = parseFile(sm_, all[i], *r.diags, *r.ast, popts, &r.stats);
+    }
+  };
+  unsigned threads = std::max(1u, std::min<unsigned>(std::thread::hardware_concurrency(), static_cast<unsigned>(all.size())));
+  if (opts.parseThreads) threads = std::min(threads, opts.parseThreads);
+  runParallelWithLargeStacks(threads, worker);
   bool parsed = true;
-  for (uint32_t f : all) {
-    ParseStats ps;
-    parsed = parseFile(sm_, f, diags_, *ast_, popts, &ps) && parsed;
+  for (size_t i = 0; i < all.size(); ++i) {
+    FileResult& r = results[i];
+    parsed = parsed && r.ok;
+    for (const Diagnostic& d : r.diags->diagnostics()) diags_.commit(d);
+    ast_->adopt(std::move(*r.ast));
+    const ParseStats& ps = r.stats;
     stats_.tokens += ps.tokens;
+    stats_.lexSeconds += ps.lexSeconds;
+    stats_.antlrSeconds += ps.parseSeconds;
+    stats_.buildSeconds += ps.buildSeconds;
     stats_.llFallback = stats_.llFallback || ps.usedLLFallback;
-    stats_.bytes += sm_.file(f).text.size();
-    stats_.lines += sm_.lineCount(f);
+    stats_.bytes += sm_.file(all[i]).text.size();
+    stats_.lines += sm_.lineCount(all[i]);
     ++stats_.files;
   }
   // A file holding only VAR_GLOBAL blocks is a GVL named after the file.
@@ -106,25 +137,26 @@ bool Compilation::check(const CompileOptions& opts) {
   return ok && !diags_.hasErrors();
 }
 
-void runWithLargeStack(const std::function<void()>& fn) {
+void runParallelWithLargeStacks(unsigned n, const std::function<void()>& fn) {
+  // 512 MiB of address space per thread; pages are only touched when used.
   pthread_attr_t attr;
   pthread_attr_init(&attr);
   pthread_attr_setstacksize(&attr, 512u << 20);
-  pthread_t th;
-  auto* heapFn = new std::function<void()>(fn);
   auto tramp = [](void* p) -> void* {
-    auto* f = static_cast<std::function<void()>*>(p);
-    (*f)();
+    (*static_cast<const std::function<void()>*>(p))();
     return nullptr;
   };
-  if (pthread_create(&th, &attr, tramp, heapFn) != 0) {
-    fn();
-  } else {
-    pthread_join(th, nullptr);
+  std::vector<pthread_t> started;
+  for (unsigned i = 0; i < n; ++i) {
+    pthread_t th;
+    if (pthread_create(&th, &attr, tramp, const_cast<std::function<void()>*>(&fn)) == 0) started.push_back(th);
   }
-  delete heapFn;
+  if (started.empty()) fn();   // could not start a thread: run here
+  for (pthread_t th : started) pthread_join(th, nullptr);
   pthread_attr_destroy(&attr);
 }
+
+void runWithLargeStack(const std::function<void()>& fn) { runParallelWithLargeStacks(1, fn); }
 
 CompileOptions optionsFromFileHeader(const std::string& text, CompileOptions base) {
   size_t p = text.find("stc-options:");

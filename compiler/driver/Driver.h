@@ -2,6 +2,7 @@
 // directories) into a checked AST, and renders diagnostics.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <set>
@@ -30,11 +31,13 @@ struct CompileOptions {
   std::optional<sema::Dialect> dialect;  // overrides the project's
   std::set<std::string> defines;         // lower-case
   bool includeStdlib = true;             // the IEC standard FB declarations
+  unsigned parseThreads = 0;             // 0 = one per core
 };
 
 struct CompileStats {
   size_t files = 0, lines = 0, tokens = 0, bytes = 0;
   double parseSeconds = 0, semaSeconds = 0;
+  double lexSeconds = 0, antlrSeconds = 0, buildSeconds = 0;   // parts of parseSeconds
   bool llFallback = false;
 };
 
@@ -71,6 +74,8 @@ private:
 // Runs `fn` on a thread with a large stack, so that deeply nested input
 // cannot overflow it.
 void runWithLargeStack(const std::function<void()>& fn);
+// Runs `fn` on `n` such threads at once and waits for all of them.
+void runParallelWithLargeStacks(unsigned n, const std::function<void()>& fn);
 
 // -verify: checks the diagnostics against `expected-error {{...}}` comments
 // in the sources.  Prints mismatches to `out`; returns true if all match.

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <typeinfo>
 
 #include "parse/ParseInternal.h"
 
@@ -13,6 +14,12 @@ using namespace stc::ast;
 using P = STParser;
 
 namespace {
+
+// The labelled-alternative contexts are leaf classes, so an exact typeid
+// test is equivalent to dynamic_cast and much cheaper (no hierarchy walk).
+template <typename T, typename B> T* as(B* node) {
+  return node && typeid(*node) == typeid(T) ? static_cast<T*>(node) : nullptr;
+}
 
 std::string upper(std::string_view s) {
   std::string r(s);
@@ -134,18 +141,18 @@ private:
     if (d->name.empty()) return nullptr;
     auto* def = c->typeDefinition();
     if (!def) return nullptr;
-    if (auto* s = dynamic_cast<P::StructDefContext*>(def)) {
+    if (auto* s = as<P::StructDefContext>(def)) {
       TypeRef* t = ctx_.make<TypeRef>(TypeRef::Struct);
       t->range = range(s);
       if (s->qualifiedName()) t->structBase = qname(s->qualifiedName());
       for (auto* m : s->memberDecl()) varDecl(m->varDecl(), VarSection::Var, t->members, nullptr);
       d->def = t;
-    } else if (auto* u = dynamic_cast<P::UnionDefContext*>(def)) {
+    } else if (auto* u = as<P::UnionDefContext>(def)) {
       TypeRef* t = ctx_.make<TypeRef>(TypeRef::Union);
       t->range = range(u);
       for (auto* m : u->memberDecl()) varDecl(m->varDecl(), VarSection::Var, t->members, nullptr);
       d->def = t;
-    } else if (auto* e = dynamic_cast<P::TypedEnumDefContext*>(def)) {
+    } else if (auto* e = as<P::TypedEnumDefContext>(def)) {
       TypeRef* t = ctx_.make<TypeRef>(TypeRef::Enum);
       t->range = range(e);
       if (e->typeName()) t->name = qname(e->typeName()->qualifiedName());
@@ -155,7 +162,7 @@ private:
       t->enumValues.push_back(first);
       for (auto* v : e->enumValue()) t->enumValues.push_back(enumValue(v));
       d->def = t;
-    } else if (auto* a = dynamic_cast<P::AliasDefContext*>(def)) {
+    } else if (auto* a = as<P::AliasDefContext>(def)) {
       d->def = typeSpec(a->typeSpec());
     }
     // STRUCT EXTENDS written before the colon (CODESYS: TYPE S EXTENDS B : STRUCT).
@@ -173,7 +180,7 @@ private:
 
   TypeRef* typeSpec(P::TypeSpecContext* c) {
     if (!c) return nullptr;
-    if (auto* a = dynamic_cast<P::ArrayTypeContext*>(c)) {
+    if (auto* a = as<P::ArrayTypeContext>(c)) {
       TypeRef* t = ctx_.make<TypeRef>(TypeRef::Array);
       t->range = range(a);
       for (auto* r : a->arrayRange()) {
@@ -186,20 +193,20 @@ private:
       t->element = typeSpec(a->typeSpec());
       return t->element ? t : nullptr;
     }
-    if (auto* p = dynamic_cast<P::PointerTypeContext*>(c)) {
+    if (auto* p = as<P::PointerTypeContext>(c)) {
       TypeRef* t = ctx_.make<TypeRef>(TypeRef::Pointer);
       t->range = range(p);
       t->element = typeSpec(p->typeSpec());
       return t->element ? t : nullptr;
     }
-    if (auto* r = dynamic_cast<P::ReferenceTypeContext*>(c)) {
+    if (auto* r = as<P::ReferenceTypeContext>(c)) {
       TypeRef* t = ctx_.make<TypeRef>(TypeRef::Reference);
       t->range = range(r);
       t->refTo = r->REF_TO() != nullptr;
       t->element = typeSpec(r->typeSpec());
       return t->element ? t : nullptr;
     }
-    if (auto* s = dynamic_cast<P::SubrangeTypeContext*>(c)) {
+    if (auto* s = as<P::SubrangeTypeContext>(c)) {
       TypeRef* t = ctx_.make<TypeRef>(TypeRef::Subrange);
       t->range = range(s);
       t->name = qname(s->qualifiedName());
@@ -207,21 +214,21 @@ private:
       t->hi = expr(s->hi);
       return t;
     }
-    if (auto* s = dynamic_cast<P::SizedTypeContext*>(c)) {
+    if (auto* s = as<P::SizedTypeContext>(c)) {
       TypeRef* t = ctx_.make<TypeRef>(TypeRef::Sized);
       t->range = range(s);
       t->name = qname(s->qualifiedName());
       t->size = expr(s->expression());
       return t;
     }
-    if (auto* e = dynamic_cast<P::InlineEnumTypeContext*>(c)) {
+    if (auto* e = as<P::InlineEnumTypeContext>(c)) {
       TypeRef* t = ctx_.make<TypeRef>(TypeRef::Enum);
       t->range = range(e);
       for (auto* v : e->enumValue()) t->enumValues.push_back(enumValue(v));
       if (e->typeName()) t->name = qname(e->typeName()->qualifiedName());
       return t;
     }
-    if (auto* n = dynamic_cast<P::NamedTypeContext*>(c)) {
+    if (auto* n = as<P::NamedTypeContext>(c)) {
       TypeRef* t = ctx_.make<TypeRef>(TypeRef::Named);
       t->range = range(n);
       t->name = qname(n->qualifiedName());
@@ -457,17 +464,17 @@ private:
 
   Expr* initializer(P::InitializerContext* c) {
     if (!c) return nullptr;
-    if (auto* a = dynamic_cast<P::ArrayInitContext*>(c)) {
+    if (auto* a = as<P::ArrayInitContext>(c)) {
       auto* e = ctx_.make<ArrayInitExpr>();
       e->range = range(a);
       for (auto* el : a->arrayInitElement()) {
         ArrayInitExpr::Element elem;
         elem.range = range(el);
-        if (auto* r = dynamic_cast<P::RepeatedElementContext*>(el)) {
+        if (auto* r = as<P::RepeatedElementContext>(el)) {
           elem.repeated = true;
           elem.repeat = integerValue(r->INTEGER_LITERAL());
           elem.value = r->initializer() ? initializer(r->initializer()) : nullptr;
-        } else if (auto* s = dynamic_cast<P::SingleElementContext*>(el)) {
+        } else if (auto* s = as<P::SingleElementContext>(el)) {
           elem.value = initializer(s->initializer());
           if (!elem.value) continue;
         }
@@ -475,7 +482,7 @@ private:
       }
       return e;
     }
-    if (auto* s = dynamic_cast<P::StructInitContext*>(c)) {
+    if (auto* s = as<P::StructInitContext>(c)) {
       auto* e = ctx_.make<StructInitExpr>();
       e->range = range(s);
       for (auto* f : s->structInitElement()) {
@@ -486,7 +493,7 @@ private:
       }
       return e;
     }
-    if (auto* x = dynamic_cast<P::ExprInitContext*>(c)) return expr(x->expression());
+    if (auto* x = as<P::ExprInitContext>(c)) return expr(x->expression());
     return nullptr;
   }
 
@@ -558,60 +565,51 @@ private:
   }
 
   Stmt* statement(P::StatementContext* c) {
-    if (auto* l = dynamic_cast<P::LabeledStmtContext*>(c)) {
+    if (auto* l = as<P::LabeledStmtContext>(c)) {
       auto* s = ctx_.make<LabelStmt>();
       s->range = range(l);
       s->label = ident(l->IDENTIFIER());
       s->stmt = l->statement() ? statement(l->statement()) : nullptr;
       return s->label.empty() ? nullptr : s;
     }
-    if (auto* p = dynamic_cast<P::PlainStmtContext*>(c)) return unlabeled(p->unlabeledStatement());
+    if (auto* p = as<P::PlainStmtContext>(c)) return unlabeled(p->unlabeledStatement());
     return nullptr;
   }
 
   Stmt* unlabeled(P::UnlabeledStatementContext* c) {
     if (!c) return nullptr;
-    if (auto* a = dynamic_cast<P::AssignStmtContext*>(c)) {
+    if (auto* a = as<P::ExprBasedStmtContext>(c)) {
+      Expr* lhs = expr(a->lhs);
+      if (!lhs) return nullptr;
+      if (!a->rhs) {
+        auto* s = ctx_.make<ExprStmt>();
+        s->range = range(a);
+        s->expr = lhs;
+        return s;
+      }
       auto* s = ctx_.make<AssignStmt>();
       s->range = range(a);
-      s->lhs = expr(a->lhs);
+      s->lhs = lhs;
       s->rhs = expr(a->rhs);
-      if (a->ASSIGN()) s->opLoc = loc(a->ASSIGN()->getSymbol());
-      return s->lhs && s->rhs ? s : nullptr;
-    }
-    if (auto* a = dynamic_cast<P::RefAssignStmtContext*>(c)) {
-      auto* s = ctx_.make<AssignStmt>();
-      s->op = AssignStmt::Ref;
-      s->range = range(a);
-      s->lhs = expr(a->lhs);
-      s->rhs = expr(a->rhs);
-      if (a->REF_ASSIGN()) s->opLoc = loc(a->REF_ASSIGN()->getSymbol());
-      return s->lhs && s->rhs ? s : nullptr;
-    }
-    if (auto* a = dynamic_cast<P::SetResetStmtContext*>(c)) {
-      auto* s = ctx_.make<AssignStmt>();
-      s->range = range(a);
-      s->lhs = expr(a->lhs);
-      s->rhs = expr(a->rhs);
-      if (!a->op) return nullptr;
-      s->opLoc = loc(a->op);
-      std::string op = upper(text(a->op));
+      if (!s->rhs) return nullptr;
+      if (a->op) {
+        s->opLoc = loc(a->op);
+        s->op = a->op->getType() == STLexer::REF_ASSIGN ? AssignStmt::Ref : AssignStmt::Normal;
+        return s;
+      }
+      if (!a->sr) return nullptr;
+      s->opLoc = loc(a->sr);
+      std::string op = upper(text(a->sr));
       if (op == "S") s->op = AssignStmt::Set;
       else if (op == "R") s->op = AssignStmt::Reset;
       else {
-        diags_.error(loc(a->op), "unexpected identifier '" + std::string(text(a->op)) + "'; expected ':=', 'S=' or 'R='", "syntax")
-            .range(range(a->op));
+        diags_.error(loc(a->sr), "unexpected identifier '" + std::string(text(a->sr)) + "'; expected ':=', 'S=' or 'R='", "syntax")
+            .range(range(a->sr));
         return nullptr;
       }
-      return s->lhs && s->rhs ? s : nullptr;
+      return s;
     }
-    if (auto* e = dynamic_cast<P::ExprStmtContext*>(c)) {
-      auto* s = ctx_.make<ExprStmt>();
-      s->range = range(e);
-      s->expr = expr(e->expression());
-      return s->expr ? s : nullptr;
-    }
-    if (auto* i = dynamic_cast<P::IfStmtContext*>(c)) {
+    if (auto* i = as<P::IfStmtContext>(c)) {
       auto* s = ctx_.make<IfStmt>();
       s->range = range(i);
       auto bodies = i->body();
@@ -631,7 +629,7 @@ private:
       }
       return s;
     }
-    if (auto* k = dynamic_cast<P::CaseStmtContext*>(c)) {
+    if (auto* k = as<P::CaseStmtContext>(c)) {
       auto* s = ctx_.make<CaseStmt>();
       s->range = range(k);
       s->selector = expr(k->expression());
@@ -655,7 +653,7 @@ private:
       }
       return s;
     }
-    if (auto* f = dynamic_cast<P::ForStmtContext*>(c)) {
+    if (auto* f = as<P::ForStmtContext>(c)) {
       auto* s = ctx_.make<ForStmt>();
       s->range = range(f);
       Ident v = ident(f->IDENTIFIER());
@@ -669,31 +667,31 @@ private:
       s->body = body(f->body());
       return s->from && s->to ? s : nullptr;
     }
-    if (auto* w = dynamic_cast<P::WhileStmtContext*>(c)) {
+    if (auto* w = as<P::WhileStmtContext>(c)) {
       auto* s = ctx_.make<WhileStmt>();
       s->range = range(w);
       s->cond = expr(w->expression());
       s->body = body(w->body());
       return s->cond ? s : nullptr;
     }
-    if (auto* r = dynamic_cast<P::RepeatStmtContext*>(c)) {
+    if (auto* r = as<P::RepeatStmtContext>(c)) {
       auto* s = ctx_.make<RepeatStmt>();
       s->range = range(r);
       s->body = body(r->body());
       s->cond = expr(r->expression());
       return s->cond ? s : nullptr;
     }
-    if (auto* j = dynamic_cast<P::JmpStmtContext*>(c)) {
+    if (auto* j = as<P::JmpStmtContext>(c)) {
       auto* s = ctx_.make<JmpStmt>();
       s->range = range(j);
       s->target = ident(j->IDENTIFIER());
       return s->target.empty() ? nullptr : s;
     }
     Stmt::Kind k;
-    if (dynamic_cast<P::ExitStmtContext*>(c)) k = Stmt::Exit;
-    else if (dynamic_cast<P::ContinueStmtContext*>(c)) k = Stmt::Continue;
-    else if (dynamic_cast<P::ReturnStmtContext*>(c)) k = Stmt::Return;
-    else if (dynamic_cast<P::EmptyStmtContext*>(c)) k = Stmt::Empty;
+    if (as<P::ExitStmtContext>(c)) k = Stmt::Exit;
+    else if (as<P::ContinueStmtContext>(c)) k = Stmt::Continue;
+    else if (as<P::ReturnStmtContext>(c)) k = Stmt::Return;
+    else if (as<P::EmptyStmtContext>(c)) k = Stmt::Empty;
     else return nullptr;
     auto* s = ctx_.make<SimpleStmt>(k);
     s->range = range(c);
@@ -704,16 +702,16 @@ private:
   Argument argument(P::CallArgumentContext* c) {
     Argument a;
     a.range = range(c);
-    if (auto* n = dynamic_cast<P::NamedInputContext*>(c)) {
+    if (auto* n = as<P::NamedInputContext>(c)) {
       a.kind = Argument::Input;
       a.name = ident(n->IDENTIFIER());
       a.value = n->expression() ? expr(n->expression()) : nullptr;
-    } else if (auto* o = dynamic_cast<P::NamedOutputContext*>(c)) {
+    } else if (auto* o = as<P::NamedOutputContext>(c)) {
       a.kind = Argument::Output;
       a.name = ident(o->IDENTIFIER());
       a.negated = o->NOT() != nullptr;
       a.value = o->expression() ? expr(o->expression()) : nullptr;
-    } else if (auto* p = dynamic_cast<P::PositionalArgContext*>(c)) {
+    } else if (auto* p = as<P::PositionalArgContext>(c)) {
       a.value = expr(p->expression());
     }
     return a;
@@ -743,8 +741,8 @@ private:
 
   Expr* expr(P::ExpressionContext* c) {
     if (!c) return nullptr;
-    if (auto* p = dynamic_cast<P::PrimaryExprContext*>(c)) return primary(p->primary());
-    if (auto* m = dynamic_cast<P::MemberExprContext*>(c)) {
+    if (auto* p = as<P::PrimaryExprContext>(c)) return primary(p->primary());
+    if (auto* m = as<P::MemberExprContext>(c)) {
       auto* e = ctx_.make<MemberExpr>();
       e->range = range(m);
       e->base = expr(m->expression());
@@ -764,7 +762,7 @@ private:
       }
       return e->member.empty() ? nullptr : e;
     }
-    if (auto* x = dynamic_cast<P::IndexExprContext*>(c)) {
+    if (auto* x = as<P::IndexExprContext>(c)) {
       auto* e = ctx_.make<IndexExpr>();
       e->range = range(x);
       auto es = x->expression();
@@ -774,13 +772,13 @@ private:
         if (Expr* ix = expr(es[i])) e->indices.push_back(ix);
       return e->base && !e->indices.empty() ? e : nullptr;
     }
-    if (auto* d = dynamic_cast<P::DerefExprContext*>(c)) {
+    if (auto* d = as<P::DerefExprContext>(c)) {
       auto* e = ctx_.make<DerefExpr>();
       e->range = range(d);
       e->base = expr(d->expression());
       return e->base ? e : nullptr;
     }
-    if (auto* k = dynamic_cast<P::CallExprContext*>(c)) {
+    if (auto* k = as<P::CallExprContext>(c)) {
       auto* e = ctx_.make<CallExpr>();
       e->range = range(k);
       e->callee = expr(k->expression());
@@ -789,7 +787,7 @@ private:
       if (k->LPAREN()) e->parenRange = SourceRange(loc(k->LPAREN()->getSymbol()), range(k).end);
       return e;
     }
-    if (auto* u = dynamic_cast<P::UnaryExprContext*>(c)) {
+    if (auto* u = as<P::UnaryExprContext>(c)) {
       Expr* operand = expr(u->expression());
       if (!operand || !u->op) return nullptr;
       // Fold '-' into a numeric literal so that -128 fits SINT.
@@ -810,7 +808,7 @@ private:
       e->operand = operand;
       return e;
     }
-    if (auto* b = dynamic_cast<P::BinaryExprContext*>(c)) {
+    if (auto* b = as<P::BinaryExprContext>(c)) {
       auto* e = ctx_.make<BinaryExpr>();
       e->range = range(b);
       e->lhs = expr(b->expression(0));
@@ -825,30 +823,30 @@ private:
 
   Expr* primary(P::PrimaryContext* c) {
     if (!c) return nullptr;
-    if (auto* l = dynamic_cast<P::LiteralPrimaryContext*>(c)) return literal(l->literal());
-    if (auto* n = dynamic_cast<P::NamePrimaryContext*>(c)) {
+    if (auto* l = as<P::LiteralPrimaryContext>(c)) return literal(l->literal());
+    if (auto* n = as<P::NamePrimaryContext>(c)) {
       auto* e = ctx_.make<NameExpr>();
       e->ident = ident(n->IDENTIFIER());
       e->range = e->ident.range;
       return e->ident.empty() ? nullptr : e;
     }
-    if (auto* t = dynamic_cast<P::ThisPrimaryContext*>(c)) {
+    if (auto* t = as<P::ThisPrimaryContext>(c)) {
       auto* e = ctx_.make<ThisExpr>();
       e->range = range(t);
       return e;
     }
-    if (auto* s = dynamic_cast<P::SuperPrimaryContext*>(c)) {
+    if (auto* s = as<P::SuperPrimaryContext>(c)) {
       auto* e = ctx_.make<SuperExpr>();
       e->range = range(s);
       return e;
     }
-    if (auto* a = dynamic_cast<P::AddressPrimaryContext*>(c)) {
+    if (auto* a = as<P::AddressPrimaryContext>(c)) {
       auto* e = ctx_.make<DirectAddressExpr>();
       e->range = range(a);
       e->text = std::string(text(a->DIRECT_ADDRESS()));
       return e;
     }
-    if (auto* p = dynamic_cast<P::ParenPrimaryContext*>(c)) {
+    if (auto* p = as<P::ParenPrimaryContext>(c)) {
       Expr* inner = expr(p->expression());
       if (inner) inner->range = range(p);
       return inner;

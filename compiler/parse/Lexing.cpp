@@ -255,8 +255,8 @@ struct CondFrame {
 void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOptions& opts, LexedFile& out) {
   out.input = std::make_unique<ByteInputStream>(file.text, file.path);
   out.lexer = std::make_unique<STLexer>(out.input.get());
-  STLexer& lexer = *out.lexer;
-  lexer.removeErrorListeners();
+  out.lexer->removeErrorListeners();
+  FastLexer lexer(file.text, out.lexer.get(), out.input.get());
   std::set<std::string> defines = opts.defines;
   std::vector<CondFrame> conds;
   std::vector<ast::Pragma> pendingAttrs;
@@ -265,29 +265,18 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
   out.tokens.reserve(t.size() / 5 + 16);
 
   auto here = [&](antlr4::Token* tok) { return locOf(file.id, tok); };
-  const antlr4::Token* prevAny = nullptr;   // previous token of any channel, for `(*` detection
-  std::unique_ptr<antlr4::Token> prevHolder;
 
   while (true) {
-    std::unique_ptr<antlr4::Token> tok = lexer.nextToken();
+    std::unique_ptr<antlr4::Token> tok = lexer.next();
     size_t type = tok->getType();
     if (type == antlr4::Token::EOF) {
+      if (lexer.unterminatedComment() != std::string::npos) {
+        SourceLoc l{file.id, static_cast<uint32_t>(lexer.unterminatedComment())};
+        diags.error(l, "unterminated comment", "syntax").range(SourceRange(l, {file.id, l.offset + 2}));
+      }
       if (!conds.empty())
         diags.error(conds.back().loc, "unterminated '{IF}' pragma: missing '{END_IF}'", "pragma");
       out.tokens.push_back(std::move(tok));
-      break;
-    }
-    // `(*` or `/*` as two tokens means the comment rule failed: unterminated.
-    if (type == STLexer::STAR && prevAny && prevAny->getStopIndex() + 1 == tok->getStartIndex() &&
-        (prevAny->getType() == STLexer::LPAREN || prevAny->getType() == STLexer::SLASH)) {
-      SourceLoc l{file.id, static_cast<uint32_t>(prevAny->getStartIndex())};
-      diags.error(l, "unterminated comment", "syntax").range(SourceRange(l, {file.id, l.offset + 2}));
-      if (!out.tokens.empty() && out.tokens.back().get() == prevAny) out.tokens.pop_back();
-      // Everything after is inside the comment.
-      auto eof = std::make_unique<antlr4::CommonToken>(antlr4::Token::EOF, "<EOF>");
-      eof->setStartIndex(t.size());
-      eof->setStopIndex(t.size() - 1);
-      out.tokens.push_back(std::move(eof));
       break;
     }
     if (type == STLexer::PRAGMA) {
@@ -377,27 +366,18 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
       } else {
         diags.warning(here(tok.get()), "unknown pragma '{" + body + "}' ignored", "unknown-pragma").range(r);
       }
-      prevAny = nullptr;
       continue;
     }
-    if (tok->getChannel() != antlr4::Token::DEFAULT_CHANNEL) {
-      prevAny = nullptr;
-      continue;
-    }
-    if (!active) {
-      prevAny = nullptr;
-      continue;
-    }
+    if (tok->getChannel() != antlr4::Token::DEFAULT_CHANNEL) continue;
+    if (!active) continue;
     if (type == STLexer::ERROR_CHAR) {
       size_t b = tok->getStartIndex();
       unsigned char c = static_cast<unsigned char>(t[b]);
       SourceLoc l = here(tok.get());
       if (c >= 0x80) {
         // Swallow the rest of the UTF-8 sequence (continuation bytes).
-        size_t e = b + 1;
-        while (e < t.size() && (static_cast<unsigned char>(t[e]) & 0xC0) == 0x80) ++e;
+        size_t e = tok->getStopIndex() + 1;
         std::string seq = t.substr(b, e - b);
-        for (size_t k = b + 1; k < e; ++k) lexer.nextToken();
         diags.error(l, "non-ASCII character '" + seq + "' is not allowed outside strings and comments", "invalid-character")
             .range(SourceRange(l, {file.id, static_cast<uint32_t>(e)}));
       } else if (c < 0x20 || c == 0x7F) {
@@ -408,7 +388,6 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
         diags.error(l, std::string("invalid character '") + static_cast<char>(c) + "' in source", "invalid-character")
             .range(rangeOf(file.id, tok.get()));
       }
-      prevAny = nullptr;
       continue;
     }
     if (type == STLexer::UNTERMINATED_STRING) {
@@ -422,7 +401,6 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
       out.attributesAt[static_cast<uint32_t>(tok->getStartIndex())] = std::move(pendingAttrs);
       pendingAttrs.clear();
     }
-    prevAny = tok.get();
     out.tokens.push_back(std::move(tok));
   }
 }

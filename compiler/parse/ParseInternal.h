@@ -33,6 +33,31 @@ private:
   std::string name_;
 };
 
+// The hand-written lexer (FastLexer.cpp): same tokens as STLexer.g4.
+class FastLexer {
+public:
+  FastLexer(const std::string& text, antlr4::TokenSource* source, antlr4::CharStream* stream);
+  std::unique_ptr<antlr4::Token> next();
+  // Offset of an unterminated comment's opener, if next() stopped at one.
+  size_t unterminatedComment() const { return unterminatedComment_; }
+
+private:
+  size_t digits(size_t i) const;
+  size_t number(size_t i) const;
+  size_t timeBody(size_t i) const;
+  size_t dateBody(size_t i) const;
+  size_t todBody(size_t i) const;
+  size_t commentEnd(size_t i);
+  std::unique_ptr<antlr4::Token> make(size_t type, size_t start, size_t end, size_t channel);
+
+  const std::string& t_;
+  std::pair<antlr4::TokenSource*, antlr4::CharStream*> source_;
+  size_t pos_ = 0;
+  size_t line_ = 1;
+  size_t unterminatedComment_ = std::string::npos;
+  std::vector<uint8_t> failedComment_;   // openers known not to close
+};
+
 // Result of the lexing stage for one file.
 struct LexedFile {
   // Tokens keep pointers to their lexer and char stream (ANTLR's error

@@ -1,6 +1,8 @@
 // Parse driver: normalise -> lex -> parse (SLL, then LL on failure) -> AST.
 #include "parse/Parser.h"
 
+#include <chrono>
+
 #include "parse/ParseInternal.h"
 
 namespace stc {
@@ -42,9 +44,14 @@ bool parseFile(SourceManager& sm, uint32_t fileId, DiagnosticsEngine& diags, ast
   SourceFile& file = sm.file(fileId);
   unsigned errorsBefore = diags.errorCount();
   try {
+    using clock = std::chrono::steady_clock;
+    auto secondsSince = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+    auto t0 = clock::now();
     normalizeFullWidth(file, diags);
     LexedFile lexed;
     lexFile(file, diags, opts, lexed);
+    if (stats) stats->lexSeconds += secondsSince(t0);
+    auto t1 = clock::now();
     if (stats) stats->tokens += lexed.tokens.size();
     if (!checkNesting(file, lexed, diags)) return false;
 
@@ -74,10 +81,13 @@ bool parseFile(SourceManager& sm, uint32_t fileId, DiagnosticsEngine& diags, ast
       parser.setErrorHandler(makeErrorStrategy(file, diags));
       cu = parser.compilationUnit();
     }
+    if (stats) stats->parseSeconds += secondsSince(t1);
+    auto t2 = clock::now();
     ctx.units().push_back({});
     ast::SourceUnit& unit = ctx.units().back();
     unit.file = fileId;
     if (cu) buildAST(cu, file, lexed, diags, ctx, unit);
+    if (stats) stats->buildSeconds += secondsSince(t2);
   } catch (std::exception& e) {
     diags.error(SourceLoc{fileId, 0}, std::string("internal parser error: ") + e.what(), "internal");
   } catch (...) {

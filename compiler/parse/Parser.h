@@ -17,11 +17,16 @@ struct ParseOptions {
 struct ParseStats {
   size_t tokens = 0;
   bool usedLLFallback = false;
+  double lexSeconds = 0, parseSeconds = 0, buildSeconds = 0;
 };
 
 // Parses one loaded file into `ctx` (appends a SourceUnit).  Reports every
 // problem through `diags`; never throws.  Returns false on syntax errors.
 bool parseFile(SourceManager& sm, uint32_t file, DiagnosticsEngine& diags, ast::ASTContext& ctx,
                const ParseOptions& opts, ParseStats* stats = nullptr);
+
+// Lexes `text` with the generated ANTLR lexer and with the hand-written one;
+// returns "" if they agree, else the first difference (for tests).
+std::string compareLexers(const std::string& text);
 
 }  // namespace stc

@@ -92,8 +92,9 @@ int runCheck(const CheckArgs& a) {
   if (a.stats) {
     const CompileStats& s = c.stats();
     double total = s.parseSeconds + s.semaSeconds;
-    std::cerr << fmt::format("stc: {} files, {} lines, {} tokens; parse {:.3f} s, sema {:.3f} s; {:.0f} lines/s{}\n", s.files, s.lines, s.tokens,
-                             s.parseSeconds, s.semaSeconds, total > 0 ? s.lines / total : 0.0, s.llFallback ? " (LL fallback used)" : "");
+    std::cerr << fmt::format("stc: {} files, {} lines, {} tokens; parse {:.3f} s (lex {:.3f}, parser {:.3f}, AST {:.3f}), sema {:.3f} s; {:.0f} lines/s{}\n",
+                             s.files, s.lines, s.tokens, s.parseSeconds, s.lexSeconds, s.antlrSeconds, s.buildSeconds, s.semaSeconds,
+                             total > 0 ? s.lines / total : 0.0, s.llFallback ? " (LL fallback used)" : "");
   }
   return (ok && inputsOk && !c.diags().hasErrors()) ? 0 : 1;
 }
