@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Fuzzes the front end with libFuzzer for SECONDS (default 600).
+# Builds build-fuzz/ with clang-19, ASan and UBSan; seeds from the test sources.
+# Crashing inputs land in build-fuzz/crashes/; copy minimised ones to
+# tests/fuzz/regressions/ so the test suite replays them.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SECONDS_TO_RUN=${1:-600}
+if [ ! -f build-fuzz/build.ninja ]; then
+  CC=clang-19 CXX=clang++-19 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DSTC_FUZZ=ON -DSTC_SANITIZE=ON -DSTC_BENCHMARKS=OFF -DSTC_WERROR=OFF \
+    -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link"
+fi
+cmake --build build-fuzz --target stc_fuzz_frontend
+mkdir -p build-fuzz/corpus build-fuzz/crashes
+find tests projects stdlib-motion -name '*.st' -size -16k -exec cp {} build-fuzz/corpus/ \; 2>/dev/null || true
+cp tests/fuzz/regressions/* build-fuzz/corpus/ 2>/dev/null || true
+build-fuzz/tests/fuzz/stc_fuzz_frontend build-fuzz/corpus -max_len=8192 -timeout=10 -rss_limit_mb=4096 \
+  -max_total_time="$SECONDS_TO_RUN" -artifact_prefix=build-fuzz/crashes/ -print_final_stats=1 2>&1 | tee build-fuzz/fuzz.log | tail -25
