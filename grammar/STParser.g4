@@ -185,9 +185,15 @@ caseLabel : lo=expression ( RANGE hi=expression )? ;
 
 // ---------------------------------------------------------------- expressions
 // Precedence from IEC 61131-3 table 71, highest first; AND_THEN / OR_ELSE
-// (CODESYS) share the level of AND / OR.
+// (CODESYS) share the level of AND / OR.  Primaries are alternatives of this
+// rule (not a rule of their own) to save a parse-tree node per operand.
 expression
-    : primary                                                          # primaryExpr
+    : literal                                                          # literalExpr
+    | IDENTIFIER                                                       # nameExpr
+    | THIS                                                             # thisExpr
+    | SUPER                                                            # superExpr
+    | DIRECT_ADDRESS                                                   # addressExpr
+    | LPAREN expression RPAREN                                         # parenExpr
     | expression DOT ( IDENTIFIER | INTEGER_LITERAL | PARTIAL_ACCESS )  # memberExpr
     | expression LBRACKET expression ( COMMA expression )* RBRACKET     # indexExpr
     | expression CARET                                                  # derefExpr
@@ -201,15 +207,6 @@ expression
     | expression op=( AND | AMP | AND_THEN ) expression                 # binaryExpr
     | expression op=XOR expression                                      # binaryExpr
     | expression op=( OR | OR_ELSE ) expression                         # binaryExpr
-    ;
-
-primary
-    : literal                                   # literalPrimary
-    | IDENTIFIER                                # namePrimary
-    | THIS                                      # thisPrimary
-    | SUPER                                     # superPrimary
-    | DIRECT_ADDRESS                            # addressPrimary
-    | LPAREN expression RPAREN                  # parenPrimary
     ;
 
 callArgument

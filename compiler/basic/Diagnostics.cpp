@@ -101,10 +101,27 @@ void renderOne(const SourceManager& sm, const Diagnostic& d, std::string& out, b
   std::string_view line = sm.lineText(d.loc);
   LineCol lc = sm.lineCol(d.loc);
   uint32_t lineBegin = d.loc.offset - (lc.col - 1);
+  // Very long lines: show a window around the caret.
+  std::string prefix;
+  if (line.size() > 160) {
+    size_t caretByte = std::min<size_t>(lc.col - 1, line.size());
+    size_t from = caretByte > 60 ? caretByte - 60 : 0;
+    while (from > 0 && (static_cast<unsigned char>(line[from]) & 0xC0) == 0x80) --from;
+    size_t to = std::min(line.size(), from + 140);
+    while (to < line.size() && (static_cast<unsigned char>(line[to]) & 0xC0) == 0x80) ++to;
+    line = line.substr(from, to - from);
+    lineBegin += static_cast<uint32_t>(from);
+    lc.col -= static_cast<unsigned>(from);
+    if (from > 0) prefix = "...";
+  }
   uint32_t lineEnd = lineBegin + static_cast<uint32_t>(line.size());
   std::string shown;
-  for (char c : line) shown += (c == '\t') ? ' ' : c;
-  out += "  " + shown + "\n";
+  for (char c : line) {
+    unsigned char u = static_cast<unsigned char>(c);
+    shown += (c == '\t' || (u < 0x20) || u == 0x7F) ? ' ' : c;   // no raw control characters
+  }
+  out += "  " + prefix + shown + "\n";
+  if (!prefix.empty()) out += "";
   size_t width = displayCol(line, line.size() + 1);
   std::string marks(width + 1, ' ');
   auto mark = [&](uint32_t b, uint32_t e, char ch) {
@@ -119,7 +136,7 @@ void renderOne(const SourceManager& sm, const Diagnostic& d, std::string& out, b
   size_t caret = displayCol(line, lc.col) - 1;
   if (caret < marks.size()) marks[caret] = '^';
   while (!marks.empty() && marks.back() == ' ') marks.pop_back();
-  out += "  " + std::string(color ? "\033[1;32m" : "") + marks + reset + "\n";
+  out += "  " + prefix + std::string(color ? "\033[1;32m" : "") + marks + reset + "\n";
   // Fix-it texts on one line under the caret line, each at its column, as clang does.
   std::vector<std::pair<size_t, std::string>> fixes;
   for (const FixIt& f : d.fixits) {
@@ -133,7 +150,7 @@ void renderOne(const SourceManager& sm, const Diagnostic& d, std::string& out, b
       if (fl.size() < c) fl.append(c - fl.size(), ' ');
       fl += text;
     }
-    out += "  " + std::string(color ? "\033[32m" : "") + fl + reset + "\n";
+    out += "  " + prefix + std::string(color ? "\033[32m" : "") + fl + reset + "\n";
   }
 }
 

@@ -51,28 +51,35 @@ public:
 
 private:
   // ------------------------------------------------------------ helpers
+  // Tokens conjured by error recovery ("missing ';'") have no position.
+  bool conjured(antlr4::Token* t) const {
+    return !t || t->getStartIndex() == kNoTokenIndex || t->getStartIndex() > t->getStopIndex() ||
+           t->getStopIndex() >= file_.text.size();
+  }
   std::string_view text(antlr4::Token* t) const {
+    if (conjured(t)) return {};
     return std::string_view(file_.text).substr(t->getStartIndex(), t->getStopIndex() + 1 - t->getStartIndex());
   }
   std::string_view text(antlr4::tree::TerminalNode* n) const { return text(n->getSymbol()); }
-  SourceLoc loc(antlr4::Token* t) const { return locOf(file_.id, t); }
-  SourceRange range(antlr4::Token* t) const { return rangeOf(file_.id, t); }
+  SourceLoc loc(antlr4::Token* t) const {
+    return conjured(t) ? SourceLoc{file_.id, static_cast<uint32_t>(file_.text.size())} : locOf(file_.id, t);
+  }
+  SourceRange range(antlr4::Token* t) const { return conjured(t) ? SourceRange(loc(t)) : rangeOf(file_.id, t); }
   SourceRange range(antlr4::tree::TerminalNode* n) const { return range(n->getSymbol()); }
   SourceRange range(antlr4::ParserRuleContext* c) const {
     antlr4::Token* a = c->getStart();
     antlr4::Token* b = c->getStop();
-    if (!a) return {};
-    if (!b || b->getStopIndex() + 1 < a->getStartIndex() || b->getType() == antlr4::Token::EOF)
+    if (!a || conjured(a)) return a ? SourceRange(loc(a)) : SourceRange();
+    if (!b || conjured(b) || b->getStopIndex() + 1 < a->getStartIndex() || b->getType() == antlr4::Token::EOF)
       return SourceRange(loc(a));
     return {loc(a), {file_.id, static_cast<uint32_t>(b->getStopIndex() + 1)}};
   }
   Ident ident(antlr4::tree::TerminalNode* n) const {
-    if (!n || n->getSymbol()->getTokenIndex() == static_cast<size_t>(-1) || n->getSymbol()->getStartIndex() > n->getSymbol()->getStopIndex())
-      return {};
+    if (!n || conjured(n->getSymbol())) return {};
     return {std::string(text(n)), range(n)};
   }
   Ident ident(antlr4::Token* t) const {
-    if (!t || t->getStartIndex() > t->getStopIndex() || t->getType() == antlr4::Token::EOF) return {};
+    if (conjured(t) || t->getType() == antlr4::Token::EOF) return {};
     return {std::string(text(t)), range(t)};
   }
   QualifiedName qname(P::QualifiedNameContext* c) const {
@@ -277,7 +284,11 @@ private:
     if (c->body()) d->body = body(c->body());
     if (c->endKw) d->endRange = range(c->endKw);
     // END_xxx must match the opening keyword.
-    if (c->endKw) {
+    if (c->endKw && conjured(c->endKw)) {
+      std::string expected = c->kind->getType() == STLexer::PROGRAM ? "END_PROGRAM" : c->kind->getType() == STLexer::FUNCTION ? "END_FUNCTION" : "END_FUNCTION_BLOCK";
+      diags_.error(loc(c->endKw), "missing '" + expected + "' at end of file", "syntax")
+          .note(d->name.range.begin, std::string(spelling(d->pouKind)) + " '" + d->name.str() + "' starts here");
+    } else if (c->endKw) {
       size_t want = c->kind->getType() == STLexer::PROGRAM ? STLexer::END_PROGRAM
                     : c->kind->getType() == STLexer::FUNCTION ? STLexer::END_FUNCTION : STLexer::END_FUNCTION_BLOCK;
       if (c->endKw->getType() != want) {
@@ -741,7 +752,34 @@ private:
 
   Expr* expr(P::ExpressionContext* c) {
     if (!c) return nullptr;
-    if (auto* p = as<P::PrimaryExprContext>(c)) return primary(p->primary());
+    if (auto* l = as<P::LiteralExprContext>(c)) return literal(l->literal());
+    if (auto* n = as<P::NameExprContext>(c)) {
+      auto* e = ctx_.make<NameExpr>();
+      e->ident = ident(n->IDENTIFIER());
+      e->range = e->ident.range;
+      return e->ident.empty() ? nullptr : e;
+    }
+    if (auto* t = as<P::ThisExprContext>(c)) {
+      auto* e = ctx_.make<ThisExpr>();
+      e->range = range(t);
+      return e;
+    }
+    if (auto* s = as<P::SuperExprContext>(c)) {
+      auto* e = ctx_.make<SuperExpr>();
+      e->range = range(s);
+      return e;
+    }
+    if (auto* a = as<P::AddressExprContext>(c)) {
+      auto* e = ctx_.make<DirectAddressExpr>();
+      e->range = range(a);
+      e->text = std::string(text(a->DIRECT_ADDRESS()));
+      return e;
+    }
+    if (auto* p = as<P::ParenExprContext>(c)) {
+      Expr* inner = expr(p->expression());
+      if (inner) inner->range = range(p);
+      return inner;
+    }
     if (auto* m = as<P::MemberExprContext>(c)) {
       auto* e = ctx_.make<MemberExpr>();
       e->range = range(m);
@@ -817,39 +855,6 @@ private:
       e->op = binaryOp(b->op->getType());
       e->opLoc = loc(b->op);
       return e;
-    }
-    return nullptr;
-  }
-
-  Expr* primary(P::PrimaryContext* c) {
-    if (!c) return nullptr;
-    if (auto* l = as<P::LiteralPrimaryContext>(c)) return literal(l->literal());
-    if (auto* n = as<P::NamePrimaryContext>(c)) {
-      auto* e = ctx_.make<NameExpr>();
-      e->ident = ident(n->IDENTIFIER());
-      e->range = e->ident.range;
-      return e->ident.empty() ? nullptr : e;
-    }
-    if (auto* t = as<P::ThisPrimaryContext>(c)) {
-      auto* e = ctx_.make<ThisExpr>();
-      e->range = range(t);
-      return e;
-    }
-    if (auto* s = as<P::SuperPrimaryContext>(c)) {
-      auto* e = ctx_.make<SuperExpr>();
-      e->range = range(s);
-      return e;
-    }
-    if (auto* a = as<P::AddressPrimaryContext>(c)) {
-      auto* e = ctx_.make<DirectAddressExpr>();
-      e->range = range(a);
-      e->text = std::string(text(a->DIRECT_ADDRESS()));
-      return e;
-    }
-    if (auto* p = as<P::ParenPrimaryContext>(c)) {
-      Expr* inner = expr(p->expression());
-      if (inner) inner->range = range(p);
-      return inner;
     }
     return nullptr;
   }

@@ -82,11 +82,17 @@ void buildAST(STParser::CompilationUnitContext* cu, const SourceFile& file, cons
 // Error strategy producing clang-style syntax diagnostics.
 std::shared_ptr<antlr4::DefaultErrorStrategy> makeErrorStrategy(const SourceFile& file, DiagnosticsEngine& diags);
 
+constexpr size_t kNoTokenIndex = static_cast<size_t>(-1);
+
+// Tokens invented by error recovery have no position (kNoTokenIndex); they are
+// placed at the previous real token by the callers, or at 0 here.
 inline SourceLoc locOf(uint32_t file, const antlr4::Token* t) {
-  return {file, static_cast<uint32_t>(t->getStartIndex())};
+  size_t s = t->getStartIndex();
+  return {file, s == kNoTokenIndex ? 0u : static_cast<uint32_t>(s)};
 }
 inline SourceRange rangeOf(uint32_t file, const antlr4::Token* t) {
-  if (t->getType() == antlr4::Token::EOF) return SourceRange({file, static_cast<uint32_t>(t->getStartIndex())});
+  if (t->getType() == antlr4::Token::EOF || t->getStartIndex() == kNoTokenIndex || t->getStopIndex() < t->getStartIndex())
+    return SourceRange(locOf(file, t));
   return {{file, static_cast<uint32_t>(t->getStartIndex())}, {file, static_cast<uint32_t>(t->getStopIndex() + 1)}};
 }
 

@@ -21,10 +21,20 @@ public:
   void reportError(antlr4::Parser*, const antlr4::RecognitionException&) override {}
 };
 
+// Likewise a single statement longer than this (a million-term expression or
+// a chain of unary operators) is reported instead of parsed.
+constexpr size_t kMaxStatementTokens = 100000;
+
 bool checkNesting(const SourceFile& file, const LexedFile& lexed, DiagnosticsEngine& diags) {
   int depth = 0;
+  size_t sinceSemi = 0;
   for (const auto& t : lexed.tokens) {
     size_t ty = t->getType();
+    if (ty == STLexer::SEMI) sinceSemi = 0;
+    else if (++sinceSemi > kMaxStatementTokens) {
+      diags.error(locOf(file.id, t.get()), "statement longer than " + std::to_string(kMaxStatementTokens) + " tokens; split it", "nesting");
+      return false;
+    }
     if (ty == STLexer::LPAREN || ty == STLexer::LBRACKET) {
       if (++depth > kMaxNesting) {
         diags.error(locOf(file.id, t.get()), "brackets nested more than " + std::to_string(kMaxNesting) + " levels deep", "nesting");

@@ -26,12 +26,14 @@ struct CheckArgs {
   std::vector<std::string> noWarn;
   unsigned errorLimit = 100;
   bool stats = false;
+  unsigned jobs = 0;
 };
 
 CompileOptions compileOptions(const CheckArgs& a) {
   CompileOptions o;
   if (a.dialect == "codesys") o.dialect = sema::Dialect::Codesys;
   else if (a.dialect == "iec") o.dialect = sema::Dialect::IEC;
+  o.parseThreads = a.jobs;
   for (const std::string& d : a.defines) {
     std::string l = d;
     for (char& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -86,8 +88,12 @@ int runCheck(const CheckArgs& a) {
     bool color = a.color == "always" || (a.color == "auto" && isatty(STDERR_FILENO));
     for (const Diagnostic& d : diags) std::cerr << renderText(c.sources(), d, color);
     unsigned e = c.diags().errorCount(), w = c.diags().warningCount();
-    if (e || w)
-      std::cerr << fmt::format("{} warning{} and {} error{} generated.\n", w, w == 1 ? "" : "s", e, e == 1 ? "" : "s");
+    // clang's summary line.
+    std::string ws = fmt::format("{} warning{}", w, w == 1 ? "" : "s");
+    std::string es = fmt::format("{} error{}", e, e == 1 ? "" : "s");
+    if (w && e) std::cerr << ws << " and " << es << " generated.\n";
+    else if (e) std::cerr << es << " generated.\n";
+    else if (w) std::cerr << ws << " generated.\n";
   }
   if (a.stats) {
     const CompileStats& s = c.stats();
@@ -122,6 +128,7 @@ int main(int argc, char** argv) {
   check->add_option("--Wno", ca.noWarn, "Disable one warning by name (e.g. --Wno unused-variable)");
   check->add_option("--error-limit", ca.errorLimit, "Stop after N errors (0: no limit)");
   check->add_flag("--stats", ca.stats, "Print sizes and front-end timing");
+  check->add_option("-j,--jobs", ca.jobs, "Parse with N threads (default: one per core)");
 
   try {
     app.parse(argc, argv);
