@@ -112,7 +112,9 @@ REF_ASSIGN : R E F '=' ;
 // Time and date literals: the prefix decides the kind; the body is checked
 // and converted by the AST builder, which reports malformed values.
 TIME_LITERAL : ( T | L T | T I M E | L T I M E ) '#' '-'? TIME_BODY ;
-fragment TIME_BODY : ( [0-9] [0-9_]* ( '.' [0-9_]+ )? [a-zA-Z]+ )+ ;
+// Parts may be separated by '_' (IEC examples: T#1h_30m, t#5d_14h_12m_18s_3.5ms).
+fragment TIME_BODY : TIME_PART ( '_'? TIME_PART )* ;
+fragment TIME_PART : [0-9] [0-9_]* ( '.' [0-9_]+ )? [a-zA-Z]+ ;
 DATE_TIME_LITERAL : ( D T | L D T | D A T E '_' A N D '_' T I M E | L D A T E '_' A N D '_' T I M E ) '#' [0-9] [0-9_]* '-' [0-9]+ '-' [0-9]+ '-' [0-9]+ ':' [0-9]+ ( ':' [0-9]+ ( '.' [0-9]+ )? )? ;
 DATE_LITERAL : ( D | L D | D A T E | L D A T E ) '#' [0-9] [0-9_]* '-' [0-9]+ '-' [0-9]+ ;
 TOD_LITERAL : ( T O D | L T O D | T I M E '_' O F '_' D A Y | L T I M E '_' O F '_' D A Y ) '#' [0-9]+ ':' [0-9]+ ( ':' [0-9]+ ( '.' [0-9]+ )? )? ;

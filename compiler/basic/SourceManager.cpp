@@ -102,7 +102,16 @@ LineCol SourceManager::lineCol(SourceLoc loc) const {
   computeLines(f);
   auto it = std::upper_bound(f.lineStarts.begin(), f.lineStarts.end(), loc.offset);
   unsigned line = static_cast<unsigned>(it - f.lineStarts.begin());
-  return {line, loc.offset - f.lineStarts[line - 1] + 1};
+  uint32_t begin = f.lineStarts[line - 1];
+  if (!f.convertedFromLatin1) return {line, loc.offset - begin + 1};
+  // Latin-1 input: one byte per character in the file as written, so count
+  // the characters (UTF-8 lead bytes) of the converted text.
+  unsigned col = 1;
+  uint32_t end = std::min<uint32_t>(loc.offset, static_cast<uint32_t>(f.text.size()));
+  for (uint32_t i = begin; i < end; ++i)
+    if ((static_cast<unsigned char>(f.text[i]) & 0xC0) != 0x80) ++col;
+  if (loc.offset > end) col += loc.offset - end;
+  return {line, col};
 }
 
 uint32_t SourceManager::lineStart(uint32_t file, unsigned line) const {

@@ -26,7 +26,7 @@ struct SourceRange {
 
 struct LineCol {
   unsigned line = 0;      // 1-based
-  unsigned col = 0;       // 1-based, in bytes (as clang)
+  unsigned col = 0;       // 1-based, in bytes (as clang); in characters for Latin-1 files
 };
 
 // One loaded file.  `text` is UTF-8 with the original line ends; Latin-1

@@ -5,6 +5,7 @@
 // Each expected diagnostic must be produced (the text is a substring of the
 // message) and every error and warning produced must be expected.  Notes are
 // checked only in files that mention expected-note.
+#include <algorithm>
 #include <regex>
 #include <sstream>
 
@@ -36,11 +37,14 @@ bool verifyDiagnostics(Compilation& c, std::string& out) {
     const SourceFile& file = sm.file(f);
     if (file.path.rfind("<stdlib>", 0) == 0) continue;
     const std::string& t = file.original.empty() ? file.text : file.original;
-    unsigned line = 1;
-    size_t pos = 0;
-    while (pos <= t.size()) {
-      size_t e = t.find('\n', pos);
-      std::string l = t.substr(pos, e == std::string::npos ? std::string::npos : e - pos);
+    // Lines as the SourceManager counts them (LF, CRLF and CR line ends), so
+    // expectations and diagnostics agree on line numbers.
+    unsigned lines = sm.lineCount(f);
+    for (unsigned line = 1; line <= lines; ++line) {
+      size_t pos = std::min<size_t>(sm.lineStart(f, line), t.size());
+      size_t e = line < lines ? std::min<size_t>(sm.lineStart(f, line + 1), t.size()) : t.size();
+      while (e > pos && (t[e - 1] == '\n' || t[e - 1] == '\r')) --e;
+      std::string l = t.substr(pos, e - pos);
       for (auto it = std::sregex_iterator(l.begin(), l.end(), re); it != std::sregex_iterator(); ++it) {
         const std::smatch& m = *it;
         Expectation x;
@@ -59,9 +63,6 @@ bool verifyDiagnostics(Compilation& c, std::string& out) {
         if (x.sev == Severity::Note) checkNotes.insert(f);
         exps.push_back(x);
       }
-      if (e == std::string::npos) break;
-      pos = e + 1;
-      ++line;
     }
   }
   std::ostringstream msg;

@@ -47,12 +47,16 @@ size_t FastLexer::digits(size_t i) const {
   return i;
 }
 
-// TIME_BODY : ( [0-9] [0-9_]* ( '.' [0-9_]+ )? [a-zA-Z]+ )+ ; returns end or npos.
+// TIME_BODY : TIME_PART ( '_'? TIME_PART )* ;
+// TIME_PART : [0-9] [0-9_]* ( '.' [0-9_]+ )? [a-zA-Z]+ ; returns end or npos.
 size_t FastLexer::timeBody(size_t i) const {
   size_t n = t_.size();
   bool any = false;
-  while (i < n && isDigit(t_[i])) {
-    size_t j = i + 1;
+  while (i < n) {
+    size_t p = i;
+    if (any && t_[p] == '_') ++p;   // separator between two parts
+    if (p >= n || !isDigit(t_[p])) break;
+    size_t j = p + 1;
     while (j < n && (isDigit(t_[j]) || t_[j] == '_')) ++j;
     if (j + 1 < n && t_[j] == '.' && (isDigit(t_[j + 1]) || t_[j + 1] == '_')) {
       j += 1;

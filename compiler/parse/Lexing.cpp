@@ -124,7 +124,7 @@ void normalizeFullWidth(SourceFile& file, DiagnosticsEngine& diags) {
             if (original.empty()) original = t;
             SourceLoc loc{file.id, static_cast<uint32_t>(i)};
             SourceRange r(loc, {file.id, static_cast<uint32_t>(i + 3)});
-            diags.warning(loc, "typographic quote '" + t.substr(i, 3) + "' (" + hex(cp) + ") treated as '" + std::string(1, q) + "'",
+            diags.warning(loc, "typographic quote '" + t.substr(i, 3) + "' (" + hex(cp) + ") treated as " + (q == '"' ? "'\"'" : "\"'\""),
                           "fullwidth-punctuation").range(r).fixit(r, std::string(1, q));
             t[i] = q; t[i + 1] = ' '; t[i + 2] = ' ';
             i += 2;
@@ -171,10 +171,13 @@ public:
 private:
   void skip() { while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_; }
   void fail(std::string m) { if (ok_) { ok_ = false; err_ = std::move(m); } }
-  std::string word() {
+  // The next word, lower-cased (names are case-insensitive); `asWritten`
+  // receives its spelling in the source, for messages.
+  std::string word(std::string* asWritten = nullptr) {
     skip();
     size_t b = pos_;
     while (pos_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_' || s_[pos_] == '.')) ++pos_;
+    if (asWritten) *asWritten = std::string(s_.substr(b, pos_ - b));
     return lowerStr(s_.substr(b, pos_ - b));
   }
   bool peekWord(const char* w) {
@@ -203,7 +206,8 @@ private:
       if (pos_ < s_.size() && s_[pos_] == ')') ++pos_; else fail("expected ')'");
       return v;
     }
-    std::string w = word();
+    std::string written;
+    std::string w = word(&written);
     if (w == "true") return true;
     if (w == "false") return false;
     if (w == "defined") {
@@ -218,7 +222,7 @@ private:
       if (pos_ < s_.size() && s_[pos_] == ')') ++pos_; else fail("expected ')'");
       return defs_.count(name) != 0;
     }
-    fail(w.empty() ? "expected a condition" : "unsupported condition '" + w + "'");
+    fail(w.empty() ? "expected a condition" : "unsupported condition '" + written + "'");
     return false;
   }
   std::string_view s_;
@@ -248,6 +252,7 @@ struct CondFrame {
   bool taken;
   bool sawElse;
   SourceLoc loc;
+  SourceLoc elseLoc = {};
 };
 
 }  // namespace
@@ -265,6 +270,12 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
   out.tokens.reserve(t.size() / 5 + 16);
 
   auto here = [&](antlr4::Token* tok) { return locOf(file.id, tok); };
+  // Joining names around non-ASCII letters (see the ERROR_CHAR case).
+  auto isWordToken = [](size_t ty) {
+    return ty == STLexer::IDENTIFIER || ty == STLexer::INTEGER_LITERAL || (ty >= 1 && ty <= STLexer::XOR);
+  };
+  bool lastGlued = false;
+  size_t pendingStart = std::string::npos, pendingEnd = 0;
 
   while (true) {
     std::unique_ptr<antlr4::Token> tok = lexer.next();
@@ -296,8 +307,10 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
         conds.push_back({active, active && v, active && v, false, here(tok.get())});
         active = conds.back().active;
       } else if (starts("elsif")) {
-        if (conds.empty() || conds.back().sawElse) {
+        if (conds.empty()) {
           diags.error(here(tok.get()), "'{ELSIF}' without a matching '{IF}'", "pragma").range(r);
+        } else if (conds.back().sawElse) {
+          diags.error(here(tok.get()), "'{ELSIF}' after '{ELSE}'", "pragma").range(r).note(conds.back().elseLoc, "'{ELSE}' is here");
         } else {
           CondFrame& f = conds.back();
           bool v = false;
@@ -308,11 +321,14 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
           active = f.active;
         }
       } else if (starts("else")) {
-        if (conds.empty() || conds.back().sawElse) {
+        if (conds.empty()) {
           diags.error(here(tok.get()), "'{ELSE}' without a matching '{IF}'", "pragma").range(r);
+        } else if (conds.back().sawElse) {
+          diags.error(here(tok.get()), "'{ELSE}' after '{ELSE}'", "pragma").range(r).note(conds.back().elseLoc, "the first '{ELSE}' is here");
         } else {
           CondFrame& f = conds.back();
           f.sawElse = true;
+          f.elseLoc = here(tok.get());
           f.active = f.parentActive && !f.taken;
           f.taken = true;
           active = f.active;
@@ -380,6 +396,20 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
         std::string seq = t.substr(b, e - b);
         diags.error(l, "non-ASCII character '" + seq + "' is not allowed outside strings and comments", "invalid-character")
             .range(SourceRange(l, {file.id, static_cast<uint32_t>(e)}));
+        // A letter such as 'ö' inside a name (grösse): the name stays one
+        // identifier token, so the parser does not report its pieces.
+        if (!out.tokens.empty() && out.tokens.back()->getStopIndex() + 1 == b && isWordToken(out.tokens.back()->getType())) {
+          auto* last = static_cast<antlr4::CommonToken*>(out.tokens.back().get());
+          last->setStopIndex(e - 1);
+          last->setType(STLexer::IDENTIFIER);
+          lastGlued = true;
+        } else if (pendingStart != std::string::npos && pendingEnd == b) {
+          pendingEnd = e;
+        } else {
+          pendingStart = b;
+          pendingEnd = e;
+        }
+        continue;
       } else if (c < 0x20 || c == 0x7F) {
         char buf[8];
         std::snprintf(buf, sizeof buf, "0x%02X", c);
@@ -389,6 +419,22 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
             .range(rangeOf(file.id, tok.get()));
       }
       continue;
+    }
+    // The rest of a name after a non-ASCII letter joins it (see above).
+    if (lastGlued && isWordToken(type) && out.tokens.back()->getStopIndex() + 1 == tok->getStartIndex()) {
+      static_cast<antlr4::CommonToken*>(out.tokens.back().get())->setStopIndex(tok->getStopIndex());
+      continue;
+    }
+    lastGlued = false;
+    if (pendingStart != std::string::npos) {
+      if (pendingEnd == tok->getStartIndex() && isWordToken(type)) {
+        auto* ct = static_cast<antlr4::CommonToken*>(tok.get());
+        ct->setStartIndex(pendingStart);
+        ct->setType(STLexer::IDENTIFIER);
+        type = STLexer::IDENTIFIER;
+        lastGlued = true;
+      }
+      pendingStart = std::string::npos;
     }
     if (type == STLexer::UNTERMINATED_STRING) {
       SourceLoc l = here(tok.get());

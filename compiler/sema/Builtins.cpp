@@ -145,6 +145,7 @@ void SemaImpl::registerBuiltins() {
     add(w + "FIND", FFind);
   }
   add("ADR", FAdr);
+  add("REF", FAdr);   // IEC REF(x): a REF_TO value
   add("BITADR", FBitAdr);
   add("SIZEOF", FSizeOf);
   add("IS_VALID", FIsValid);
@@ -474,8 +475,14 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
       const Type* t = S.checkExpr(a[0], ctx);
       if (t->isError()) return t;
       std::string why;
-      if (!S.isLvalue(a[0], ctx, why)) {
+      Symbol* decl = nullptr;
+      if (!S.isLvalue(a[0], ctx, why, &decl)) {
         S.diags_.error(a[0]->range.begin, "cannot take the address of " + why, "not-assignable").range(a[0]->range);
+        return T.error();
+      }
+      if (decl && decl->var && decl->var->isConstant) {
+        S.diags_.error(a[0]->range.begin, "cannot take the address of constant '" + decl->name + "'", "assign-constant")
+            .range(a[0]->range).note(decl->declRange.begin, "declared CONSTANT here", decl->declRange);
         return T.error();
       }
       if (b.arg0 == FBitAdr) return T.elementary(TypeKind::DWord);

@@ -39,17 +39,25 @@ std::optional<ConstValue> SemaImpl::evalConst(Expr* e, const Context& ctx) {
     if (sym->kind == Symbol::EnumValue) { ConstValue v; v.i = sym->enumValue; return v; }
     if (sym->kind == Symbol::Variable && sym->var && sym->var->isConstant && sym->var->init) {
       auto* s = const_cast<Symbol*>(sym);
+      if (s->cyclic) {
+        constEvalFailed_ = true;
+        return std::nullopt;
+      }
       if (s->resolving) {
         diags_.error(e->range.begin, "constant '" + sym->name + "' depends on itself", "not-constant").range(e->range);
+        for (Symbol* c : constStack_) c->cyclic = true;   // report each cycle once
+        constEvalFailed_ = true;
         return std::nullopt;
       }
       Context declCtx = ctx;
       auto it = outerScope_.find(s);
       if (it != outerScope_.end()) declCtx = Context{nullptr, it->second};
       s->resolving = true;
+      constStack_.push_back(s);
       if (!s->type) s->type = resolveType(s->var->type, declCtx);
       if (!sym->var->init->type) checkExpr(sym->var->init, declCtx, s->type);
       auto v = evalConst(sym->var->init, declCtx);
+      constStack_.pop_back();
       s->resolving = false;
       return v;
     }
@@ -70,13 +78,27 @@ std::optional<ConstValue> SemaImpl::evalConst(Expr* e, const Context& ctx) {
     bool real = l->kind == ConstValue::Real || r->kind == ConstValue::Real;
     auto boolean = [&](bool x) { ConstValue c; c.kind = ConstValue::Bool; c.i = x; return c; };
     switch (b->op) {
-      case BinaryOp::Add: if (real) { v.kind = ConstValue::Real; v.r = l->asReal() + r->asReal(); } else v.i = static_cast<int64_t>(static_cast<uint64_t>(l->i) + static_cast<uint64_t>(r->i)); return v;
-      case BinaryOp::Sub: if (real) { v.kind = ConstValue::Real; v.r = l->asReal() - r->asReal(); } else v.i = static_cast<int64_t>(static_cast<uint64_t>(l->i) - static_cast<uint64_t>(r->i)); return v;
-      case BinaryOp::Mul: if (real) { v.kind = ConstValue::Real; v.r = l->asReal() * r->asReal(); } else v.i = static_cast<int64_t>(static_cast<uint64_t>(l->i) * static_cast<uint64_t>(r->i)); return v;
+      case BinaryOp::Add:
+      case BinaryOp::Sub:
+      case BinaryOp::Mul: {
+        if (real) {
+          v.kind = ConstValue::Real;
+          v.r = b->op == BinaryOp::Add ? l->asReal() + r->asReal() : b->op == BinaryOp::Sub ? l->asReal() - r->asReal() : l->asReal() * r->asReal();
+          return v;
+        }
+        bool ovf = b->op == BinaryOp::Add ? __builtin_add_overflow(l->i, r->i, &v.i)
+                   : b->op == BinaryOp::Sub ? __builtin_sub_overflow(l->i, r->i, &v.i) : __builtin_mul_overflow(l->i, r->i, &v.i);
+        if (ovf) {
+          diags_.error(b->opLoc, "integer overflow in a constant expression (beyond 64-bit LINT)", "constant-range").range(b->range);
+          constEvalFailed_ = true;
+          return std::nullopt;
+        }
+        return v;
+      }
       case BinaryOp::Div:
         if (real) { v.kind = ConstValue::Real; v.r = l->asReal() / r->asReal(); return v; }
         if (r->i == 0) {
-          diags_.error(b->opLoc, "division by zero in a constant expression", "division-by-zero").range(b->range);
+          constEvalFailed_ = true;   // reported by checkBinary
           return std::nullopt;
         }
         if (l->i == INT64_MIN && r->i == -1) return std::nullopt;
@@ -85,7 +107,7 @@ std::optional<ConstValue> SemaImpl::evalConst(Expr* e, const Context& ctx) {
       case BinaryOp::Mod:
         if (real) return std::nullopt;
         if (r->i == 0) {
-          diags_.error(b->opLoc, "division by zero in a constant expression", "division-by-zero").range(b->range);
+          constEvalFailed_ = true;   // reported by checkBinary
           return std::nullopt;
         }
         if (l->i == INT64_MIN && r->i == -1) { v.i = 0; return v; }
@@ -104,6 +126,14 @@ std::optional<ConstValue> SemaImpl::evalConst(Expr* e, const Context& ctx) {
     }
   }
   if (auto* c = dyn_cast<CallExpr>(e)) {
+    // SIZEOF(type or variable) is a constant.
+    if (c->target && c->target->kind == Symbol::BuiltinFunction && c->target->name == "SIZEOF" && c->args.size() == 1 && c->args[0].value) {
+      const Type* t = c->args[0].value->type;
+      if (t && !t->isError()) {
+        if (uint64_t n = sizeOf(valueType(t))) { ConstValue v; v.i = static_cast<int64_t>(n); return v; }
+      }
+      return std::nullopt;
+    }
     // Conversions between integer types keep constant values (INT_TO_DINT(5)).
     if (c->target && c->target->kind == Symbol::BuiltinFunction && c->args.size() == 1 && c->args[0].value &&
         c->target->name.find("_TO_") != std::string::npos && e->type && e->type->isInteger()) {
@@ -115,11 +145,71 @@ std::optional<ConstValue> SemaImpl::evalConst(Expr* e, const Context& ctx) {
   return std::nullopt;
 }
 
+// Size in bytes with natural alignment (the layout code generation uses).
+uint64_t SemaImpl::sizeOf(const Type* t) const {
+  if (!t) return 0;
+  t = t->kind == TypeKind::Enum || t->kind == TypeKind::Subrange ? t->underlying() : t;
+  if (t->isBool()) return 1;
+  if (t->isElementary() && !t->isString()) return t->bits() / 8;
+  switch (t->kind) {
+    case TypeKind::String: return t->length + 1;
+    case TypeKind::WString: return 2 * (static_cast<uint64_t>(t->length) + 1);
+    case TypeKind::Pointer: case TypeKind::Reference: case TypeKind::Interface: return 8;
+    case TypeKind::Array: {
+      uint64_t n = sizeOf(t->element);
+      for (const Dim& d : t->dims) {
+        if (d.star) return 0;
+        n *= static_cast<uint64_t>(d.hi - d.lo + 1);
+      }
+      return n;
+    }
+    case TypeKind::Struct: case TypeKind::Union: {
+      uint64_t size = 0, align = 1;
+      std::vector<const Type*> chain;
+      for (const Type* s = t; s; s = s->base) chain.insert(chain.begin(), s);
+      for (const Type* s : chain)
+        for (const Member& m : s->members) {
+          uint64_t ms = sizeOf(m.type);
+          uint64_t a = std::min<uint64_t>(8, std::max<uint64_t>(1, alignOf(m.type)));
+          align = std::max(align, a);
+          if (t->kind == TypeKind::Union) size = std::max(size, ms);
+          else size = (size + a - 1) / a * a + ms;
+        }
+      return (size + align - 1) / align * align;
+    }
+    default: return 0;   // FB instances: layout decided by code generation
+  }
+}
+
+uint64_t SemaImpl::alignOf(const Type* t) const {
+  t = t && (t->kind == TypeKind::Enum || t->kind == TypeKind::Subrange) ? t->underlying() : t;
+  if (!t) return 1;
+  if (t->kind == TypeKind::Array) return alignOf(t->element);
+  if (t->kind == TypeKind::String) return 1;
+  if (t->kind == TypeKind::WString) return 2;
+  if (t->kind == TypeKind::Struct || t->kind == TypeKind::Union) {
+    uint64_t a = 1;
+    for (const Type* s = t; s; s = s->base)
+      for (const Member& m : s->members) a = std::max(a, alignOf(m.type));
+    return a;
+  }
+  uint64_t s = sizeOf(t);
+  return s ? std::min<uint64_t>(s, 8) : 8;
+}
+
 std::optional<int64_t> SemaImpl::evalInt(Expr* e, const Context& ctx, const char* what) {
   if (!e || (e->type && e->type->isError())) return std::nullopt;
+  constEvalFailed_ = false;
   auto v = evalConst(e, ctx);
+  if (!v && constEvalFailed_) return std::nullopt;   // the cause is already reported
   if (!v) {
     diags_.error(e->range.begin, std::string(what) + " must be a constant expression", "not-constant").range(e->range);
+    return std::nullopt;
+  }
+  if (v->isUnsignedBig && allowUnsigned_) return v->i;   // bit pattern of a ULINT bound
+  if (v->isUnsignedBig) {
+    diags_.error(e->range.begin, std::string(what) + " " + std::to_string(static_cast<uint64_t>(v->i)) + " is too large (at most 9223372036854775807)",
+                 "constant-range").range(e->range);
     return std::nullopt;
   }
   if (v->kind == ConstValue::Real) {

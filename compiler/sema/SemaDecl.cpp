@@ -54,6 +54,7 @@ bool SemaImpl::run() {
   for (Symbol* p : pous_) checkInheritance(p);
   for (Symbol* p : pous_) checkBody(p);
   for (auto& [c, ctx] : configs_) checkConfiguration(c, ctx);
+  checkContainmentCycles();
   checkRecursion();
   checkUnused();
   return diags_.errorCount() == before;
@@ -85,6 +86,10 @@ static const char* kindName(const Symbol* s) {
     case Symbol::BuiltinFunction: return "standard function";
   }
   return "symbol";
+}
+
+static std::string withArticle(const std::string& noun) {
+  return (std::string("aeiou").find(noun[0]) != std::string::npos ? "an " : "a ") + noun;
 }
 
 bool SemaImpl::declare(Scope& scope, Symbol* s, const char* what) {
@@ -140,6 +145,11 @@ void SemaImpl::declareDecls(std::vector<Decl*>& decls, Scope& scope, Symbol* ns)
           Symbol* existing = scope.lookupLocal(upperCase(list->name));
           list = existing && existing->kind == Symbol::GlobalList ? existing : nullptr;
         }
+      }
+      if (qualifiedOnly && !list) {
+        diags_.warning(gd->range.begin, "{attribute 'qualified_only'} needs a named global variable list; put this VAR_GLOBAL block in a file of its own "
+                                        "(the file name names the list); the variables stay global", "qualified-only").range(gd->block.range);
+        qualifiedOnly = false;
       }
       for (VarDecl* v : gd->block.vars) {
         Symbol* s = newSymbol(Symbol::Variable, v->name.name, v->name.range);
@@ -410,7 +420,7 @@ const Type* SemaImpl::resolveNamedType(const QualifiedName& q, const Context& ct
         return s->type;
       default:
         if (report)
-          diags_.error(q.range.begin, "'" + q.str() + "' is a " + kindName(s) + ", not a type", "not-a-type")
+          diags_.error(q.range.begin, "'" + q.str() + "' is " + withArticle(kindName(s)) + ", not a type", "not-a-type")
               .range(q.range).note(s->declRange.begin, "'" + s->name + "' declared here", s->declRange);
         return types_.error();
     }
@@ -487,15 +497,27 @@ const Type* SemaImpl::resolveType(TypeRef* t, const Context& ctx, const std::str
       }
       checkExpr(t->lo, ctx, base);
       checkExpr(t->hi, ctx, base);
+      allowUnsigned_ = base->isUnsignedInt();
       auto lo = evalInt(t->lo, ctx, "subrange bound");
       auto hi = evalInt(t->hi, ctx, "subrange bound");
+      allowUnsigned_ = false;
       if (!lo || !hi) break;
-      if (*lo > *hi) {
+      bool inverted = base->isUnsignedInt() ? static_cast<uint64_t>(*lo) > static_cast<uint64_t>(*hi) : *lo > *hi;
+      if (inverted) {
         diags_.error(t->lo->range.begin, "subrange lower bound " + std::to_string(*lo) + " is greater than upper bound " + std::to_string(*hi),
                      "invalid-type").range(t->range);
         break;
       }
-      result = types_.subrange(base, *lo, *hi);
+      if (!derivedName.empty()) {
+        // TYPE Good : INT(1..10): a named type, so messages can name it.
+        Type* st = types_.create(TypeKind::Subrange, derivedName);
+        st->element = base;
+        st->lo = *lo;
+        st->hi = *hi;
+        result = st;
+      } else {
+        result = types_.subrange(base, *lo, *hi);
+      }
       break;
     }
     case TypeRef::Array: {
@@ -541,7 +563,9 @@ const Type* SemaImpl::resolveType(TypeRef* t, const Context& ctx, const std::str
         elem = resolveType(t->element, ctx);
       }
       if (elem->isError()) break;
-      result = t->kind == TypeRef::Pointer ? types_.pointer(elem) : types_.reference(elem);
+      // IEC REF_TO has pointer semantics (explicit ^, REF(x), NULL); CODESYS
+      // REFERENCE TO is an alias that dereferences implicitly.
+      result = (t->kind == TypeRef::Pointer || t->refTo) ? types_.pointer(elem) : types_.reference(elem);
       break;
     }
     case TypeRef::Enum: {
@@ -683,10 +707,14 @@ void SemaImpl::resolveSignature(Symbol* pou) {
   // Members first, so that variable names can be checked against them.
   if (pou->kind == Symbol::FunctionBlock || pou->kind == Symbol::Program || pou->kind == Symbol::Interface) declareMembers(pou);
 
-  if (pou->kind == Symbol::FunctionBlock && !d->extends.parts.empty()) {
+  if (pou->kind == Symbol::FunctionBlock && !d->extends.parts.empty() && d->extends.parts.size() == 1 &&
+      types_.byName(upperCase(d->extends.parts[0].name))) {
+    diags_.error(d->extends.range.begin, "'" + d->extends.str() + "' is an elementary type; a function block can only extend a function block",
+                 "invalid-base").range(d->extends.range);
+  } else if (pou->kind == Symbol::FunctionBlock && !d->extends.parts.empty()) {
     Symbol* base = lookupQualified(d->extends, ctx.outer, true, "function block");
     if (base && base->kind != Symbol::FunctionBlock) {
-      diags_.error(d->extends.range.begin, "'" + d->extends.str() + "' is a " + kindName(base) + "; a function block can only extend a function block",
+      diags_.error(d->extends.range.begin, "'" + d->extends.str() + "' is " + withArticle(kindName(base)) + "; a function block can only extend a function block",
                    "invalid-base").range(d->extends.range);
     } else if (base) {
       if (base->resolving) {
@@ -712,7 +740,7 @@ void SemaImpl::resolveSignature(Symbol* pou) {
     Symbol* itf = lookupQualified(q, ctx.outer, true, "interface");
     if (!itf) continue;
     if (itf->kind != Symbol::Interface) {
-      diags_.error(q.range.begin, "'" + q.str() + "' is a " + kindName(itf) + ", not an interface", "invalid-base").range(q.range);
+      diags_.error(q.range.begin, "'" + q.str() + "' is " + withArticle(kindName(itf)) + ", not an interface", "invalid-base").range(q.range);
       continue;
     }
     if (itf == pou || itf->resolving) {
@@ -745,24 +773,36 @@ void SemaImpl::resolveSignature(Symbol* pou) {
   // Variables.
   bool isFunction = pou->kind == Symbol::Function;
   for (VarBlock& b : d->varBlocks) {
+    bool sectionReported = false;
     for (VarDecl* v : b.vars) {
+      if (sectionReported) goto declareVar;
       switch (v->section) {
         case VarSection::Global:
           diags_.error(b.range.begin, "VAR_GLOBAL is not allowed inside a POU; declare globals at top level", "invalid-section").range(b.range);
+          sectionReported = true;
           break;
         case VarSection::Inst:
-          if (pou->kind != Symbol::Method)
+          if (pou->kind != Symbol::Method) {
             diags_.error(b.range.begin, "VAR_INST is only allowed in methods", "invalid-section").range(b.range);
+            sectionReported = true;
+          }
           break;
         case VarSection::Output:
         case VarSection::Input:
         case VarSection::InOut:
-          if (pou->kind == Symbol::Action)
+          if (pou->kind == Symbol::Action) {
             diags_.error(b.range.begin, std::string(spelling(v->section)) + " is not allowed in an action", "invalid-section").range(b.range);
+            sectionReported = true;
+          }
           break;
         default:
           break;
       }
+    declareVar:
+      if (v->isConstant && !v->init && !v->hasEmptyInit && (v->section == VarSection::Var || v->section == VarSection::Stat) &&
+          v->type && v->type->kind != TypeRef::Array)
+        diags_.warning(v->name.range.begin, "constant '" + v->name.name + "' has no initial value; it is always the default value",
+                       "uninitialized-constant").range(v->name.range);
       Symbol* s = newSymbol(Symbol::Variable, v->name.name, v->name.range);
       s->var = v;
       // Redeclaring an inherited variable is an error.
@@ -771,14 +811,16 @@ void SemaImpl::resolveSignature(Symbol* pou) {
         diags_.error(v->name.range.begin, "variable '" + v->name.name + "' is already declared in base function block '" +
                                               pi.base->name + "'", "redefinition")
             .range(v->name.range).note(inherited->declRange.begin, "inherited declaration is here", inherited->declRange);
+        v->used = true;
         continue;
       }
       if (Symbol* m = pi.members->lookupLocal(upperCase(v->name.name))) {
         diags_.error(v->name.range.begin, "variable '" + v->name.name + "' has the same name as " + kindName(m) + " '" + m->name + "'",
                      "redefinition").range(v->name.range).note(m->declRange.begin, "declared here", m->declRange);
+        v->used = true;
         continue;
       }
-      if (!declare(*pi.vars, s, "variable")) continue;
+      if (!declare(*pi.vars, s, "variable")) { v->used = true; continue; }
       resolveVarDecl(v, s, ctx);
       if (v->section == VarSection::Input || v->section == VarSection::Output || v->section == VarSection::InOut)
         pi.params.push_back(s);
@@ -854,6 +896,9 @@ void SemaImpl::checkInheritance(Symbol* pou) {
   PouDecl* d = pi.decl;
   // Every interface method must be implemented (by this FB or a base).
   std::vector<Symbol*> itfs = pi.interfaces;
+  for (Symbol* b = pi.base; b && b->pou; b = b->pou->base)
+    for (Symbol* i : b->pou->interfaces)
+      if (std::find(itfs.begin(), itfs.end(), i) == itfs.end()) itfs.push_back(i);
   for (size_t i = 0; i < itfs.size(); ++i)
     for (Symbol* b : itfs[i]->pou->interfaces)
       if (std::find(itfs.begin(), itfs.end(), b) == itfs.end()) itfs.push_back(b);
@@ -898,11 +943,15 @@ void SemaImpl::checkInheritance(Symbol* pou) {
     Symbol* over = lookupInPou(pi.base, upperCase(m->name), true);
     if (!over || over->kind != Symbol::Method) continue;
     if (over->pou->decl->isFinal)
-      diags_.error(m->declRange.begin, "method '" + m->name + "' overrides FINAL method of '" + pi.base->name + "'", "invalid-override")
-          .range(m->declRange).note(over->declRange.begin, "declared FINAL here", over->declRange);
+      diags_.error(m->declRange.begin, "method '" + m->name + "' overrides FINAL method of '" + (over->pou->owner ? over->pou->owner->name : pi.base->name) + "'",
+                   "invalid-override").range(m->declRange).note(over->declRange.begin, "declared FINAL here", over->declRange);
     resolveSignature(m);
     resolveSignature(over);
-    if (m->pou->returnType != over->pou->returnType || m->pou->params.size() != over->pou->params.size())
+    bool sameParams = m->pou->params.size() == over->pou->params.size();
+    for (size_t k = 0; sameParams && k < m->pou->params.size(); ++k)
+      sameParams = m->pou->params[k]->type == over->pou->params[k]->type && m->pou->params[k]->var && over->pou->params[k]->var &&
+                   m->pou->params[k]->var->section == over->pou->params[k]->var->section;
+    if (m->pou->returnType != over->pou->returnType || !sameParams)
       diags_.error(m->declRange.begin, "method '" + m->name + "' does not match the method it overrides", "signature-mismatch")
           .range(m->declRange).note(over->declRange.begin, "overridden method declared here", over->declRange);
   }

@@ -142,6 +142,16 @@ Conv SemaImpl::classify(const Type* from, const Type* to) const {
 }
 
 bool SemaImpl::literalFits(const LiteralExpr* lit, const Type* to) const {
+  // Integer constants convert to an enumeration only in CODESYS mode.
+  if (to->kind == TypeKind::Enum && !codesys()) return false;
+  // A subrange takes the constants inside its bounds.
+  if (to->kind == TypeKind::Subrange && lit->litKind == LiteralExpr::Int) {
+    if (lit->intValue > static_cast<uint64_t>(INT64_MAX) && !(to->element && to->element->isUnsignedInt())) return false;
+    if (to->element && to->element->isUnsignedInt())
+      return !lit->negative && lit->intValue >= static_cast<uint64_t>(to->lo) && lit->intValue <= static_cast<uint64_t>(to->hi);
+    int64_t v = lit->negative ? -static_cast<int64_t>(lit->intValue) : static_cast<int64_t>(lit->intValue);
+    return v >= to->lo && v <= to->hi;
+  }
   const Type* u = to->underlying();
   if (lit->litKind == LiteralExpr::Real) return u->isReal() && (u->kind == TypeKind::LReal || std::fabs(lit->realValue) <= 3.4028234663852886e38);
   if (lit->litKind != LiteralExpr::Int) return false;
@@ -164,8 +174,32 @@ bool SemaImpl::literalFits(const LiteralExpr* lit, const Type* to) const {
     return bits == 64 || v <= (1ull << bits) - 1;
   }
   if (u->isBool()) return codesys() && !neg && v <= 1;
+  (void)0;
   if ((to->isPointer() || to->kind == TypeKind::Interface || to->isReference()) && v == 0 && codesys()) return true;
   return false;
+}
+
+// Bytes a string literal occupies: STRING uses Latin-1 when every character
+// fits (as CODESYS does for Western text), else UTF-8; WSTRING counts UTF-16
+// code units.
+size_t SemaImpl::storedLength(const LiteralExpr* lit) const {
+  const std::string& t = lit->text;
+  size_t chars = 0, units = 0;
+  bool latin1 = true;
+  for (size_t i = 0; i < t.size();) {
+    unsigned char c = static_cast<unsigned char>(t[i]);
+    uint32_t cp = c;
+    size_t len = 1;
+    if (c >= 0xF0 && i + 3 < t.size() + 0) { len = 4; cp = 0x10000; }
+    else if (c >= 0xE0) { len = 3; cp = 0x800; }
+    else if (c >= 0xC0) { len = 2; cp = ((c & 0x1F) << 6) | (i + 1 < t.size() ? (static_cast<unsigned char>(t[i + 1]) & 0x3F) : 0); }
+    if (cp > 0xFF) latin1 = false;
+    units += cp >= 0x10000 ? 2 : 1;
+    ++chars;
+    i += len;
+  }
+  if (lit->litKind == LiteralExpr::WString) return units;
+  return latin1 ? chars : t.size();
 }
 
 std::string SemaImpl::conversionFunction(const Type* from, const Type* to) const {
@@ -192,8 +226,29 @@ bool SemaImpl::checkConversion(const Type* to, Expr* e, const char* what) {
   if (to->kind == TypeKind::Void) return true;
   auto* lit = dyn_cast<LiteralExpr>(e);
   if (lit && lit->typePrefix.empty() && (lit->litKind == LiteralExpr::Int || lit->litKind == LiteralExpr::Real)) {
-    if (literalFits(lit, to)) return true;
+    if (literalFits(lit, to)) {
+      // CODESYS mode: an integer for an enumeration should name one of its values.
+      if (to->kind == TypeKind::Enum && lit->litKind == LiteralExpr::Int) {
+        int64_t v = lit->negative ? -static_cast<int64_t>(lit->intValue) : static_cast<int64_t>(lit->intValue);
+        bool known = false;
+        for (auto& [n, ev] : to->enumValues) known = known || ev == v;
+        if (!known)
+          diags_.warning(r.begin, std::to_string(v) + " is not a value of enumeration '" + to->name + "'", "enum-value").range(r);
+      }
+      return true;
+    }
     const Type* u = to->underlying();
+    if (to->kind == TypeKind::Subrange && lit->litKind == LiteralExpr::Int) {
+      std::string val = (lit->negative ? "-" : "") + std::to_string(lit->intValue);
+      diags_.error(r.begin, "constant " + val + " is out of range for type '" + to->name + "' (" + std::to_string(to->lo) + ".." +
+                                std::to_string(to->hi) + ")", "constant-range").range(r);
+      return false;
+    }
+    if (to->kind == TypeKind::Enum) {
+      diags_.error(r.begin, "cannot convert an integer to '" + to->name + "' in IEC mode; use one of its values (or --dialect=codesys)",
+                   "type-mismatch").range(r);
+      return false;
+    }
     if (lit->litKind == LiteralExpr::Int && (u->isInteger() || u->isBitString())) {
       std::string val = (lit->negative ? "-" : "") + std::to_string(lit->intValue);
       diags_.error(r.begin, "constant " + val + " is out of range for type '" + to->name + "'", "constant-range").range(r);
@@ -209,10 +264,34 @@ bool SemaImpl::checkConversion(const Type* to, Expr* e, const char* what) {
       return false;
     }
   }
-  if (lit && lit->litKind == LiteralExpr::String && to->kind == TypeKind::String && lit->text.size() > to->length) {
-    diags_.warning(r.begin, "string constant of length " + std::to_string(lit->text.size()) + " is truncated to " + to->name, "string-truncation")
-        .range(r);
-    return true;
+  if (lit && (lit->litKind == LiteralExpr::String || lit->litKind == LiteralExpr::WString) && lit->typePrefix.empty()) {
+    size_t len = storedLength(lit);
+    // One-character literals initialise CHAR / WCHAR.
+    if ((to->kind == TypeKind::Char && lit->litKind == LiteralExpr::String) || (to->kind == TypeKind::WChar && lit->litKind == LiteralExpr::WString)) {
+      if (len == 1) return true;
+      diags_.error(r.begin, "a constant of type '" + to->name + "' must hold exactly one character", "type-mismatch").range(r);
+      return false;
+    }
+    if (to->isString() && (to->kind == TypeKind::String) == (lit->litKind == LiteralExpr::String) && len > to->length) {
+      diags_.warning(r.begin, "string constant of length " + std::to_string(len) + " is truncated to " + to->name, "string-truncation").range(r);
+      return true;
+    }
+  }
+  // Constant expressions must fit too (SINT := 100 + 100).
+  if (!lit && from->isInteger() && (to->underlying()->isInteger() || to->kind == TypeKind::Subrange) && !isa<CallExpr>(e)) {
+    constEvalFailed_ = false;
+    if (auto v = evalConst(e, Context{nullptr, &global_}); v && v->kind == ConstValue::Int && !v->isUnsignedBig) {
+      LiteralExpr tmp;
+      tmp.litKind = LiteralExpr::Int;
+      tmp.negative = v->i < 0;
+      tmp.intValue = v->i < 0 ? static_cast<uint64_t>(-(v->i + 1)) + 1 : static_cast<uint64_t>(v->i);
+      const Type* target = to->kind == TypeKind::Subrange ? to : to->underlying();
+      if (!literalFits(&tmp, target) && !(to->kind == TypeKind::Enum)) {
+        diags_.error(r.begin, "constant expression value " + std::to_string(v->i) + " is out of range for type '" + to->name + "'", "constant-range")
+            .range(r);
+        return false;
+      }
+    }
   }
   Conv c = classify(from, to);
   auto convHint = [&](DiagBuilder& d) {
@@ -291,7 +370,6 @@ const Type* SemaImpl::checkExpr(Expr* e, const Context& ctx, const Type* expecte
       const Type* bt = checkExpr(d->base, ctx);
       if (bt->isError()) break;
       if (bt->isPointer()) { t = bt->element; break; }
-      if (isa<ThisExpr>(d->base) || isa<SuperExpr>(d->base)) { t = bt; break; }
       diags_.error(d->range.begin, "cannot dereference a value of type '" + bt->name + "'; '^' needs a pointer", "type-mismatch")
           .range(d->base->range);
       break;
@@ -308,12 +386,13 @@ const Type* SemaImpl::checkExpr(Expr* e, const Context& ctx, const Type* expecte
             .range(e->range);
         break;
       }
-      if (isThis) { t = owner->type; break; }
+      // THIS and SUPER are pointers: THIS^.x, SUPER^.M().
+      if (isThis) { t = types_.pointer(owner->type); break; }
       if (!owner->pou->base) {
         diags_.error(e->range.begin, "SUPER used in '" + owner->name + "', which does not extend a function block", "invalid-this").range(e->range);
         break;
       }
-      t = owner->pou->base->type;
+      t = types_.pointer(owner->pou->base->type);
       break;
     }
     case Expr::DirectAddress: {
@@ -397,8 +476,8 @@ const Type* SemaImpl::checkLiteral(LiteralExpr* e, const Context& ctx, const Typ
       if (exp && exp->kind == TypeKind::Real && literalFits(e, exp)) return exp;
       return types_.elementary(TypeKind::LReal);
     case LiteralExpr::Bool: return types_.elementary(TypeKind::Bool);
-    case LiteralExpr::String: return types_.string(static_cast<uint32_t>(std::max<size_t>(1, std::min<size_t>(e->text.size(), 65535))), false);
-    case LiteralExpr::WString: return types_.string(static_cast<uint32_t>(std::max<size_t>(1, std::min<size_t>(e->text.size(), 65535))), true);
+    case LiteralExpr::String: return types_.string(static_cast<uint32_t>(std::max<size_t>(1, std::min<size_t>(storedLength(e), 65535))), false);
+    case LiteralExpr::WString: return types_.string(static_cast<uint32_t>(std::max<size_t>(1, std::min<size_t>(storedLength(e), 65535))), true);
     case LiteralExpr::Time: return types_.elementary(e->isLong ? TypeKind::LTime : TypeKind::Time);
     case LiteralExpr::Date: return types_.elementary(e->isLong ? TypeKind::LDate : TypeKind::Date);
     case LiteralExpr::TimeOfDay: return types_.elementary(e->isLong ? TypeKind::LTod : TypeKind::Tod);
@@ -471,6 +550,12 @@ const Type* SemaImpl::checkName(NameExpr* e, const Context& ctx, const Type* exp
     case Symbol::EnumValue: return s->type;
     case Symbol::Property: {
       resolveSignature(s);
+      checkAccess(s, ctx, e->range);
+      if (!readingLhs_ && !s->pou->decl->getter) {
+        diags_.error(e->range.begin, "property '" + s->name + "' has no GET accessor and cannot be read", "not-a-value")
+            .range(e->range).note(s->declRange.begin, "property declared here", s->declRange);
+        return types_.error();
+      }
       return s->pou->returnType ? s->pou->returnType : types_.error();
     }
     case Symbol::Program: return s->type;
@@ -618,11 +703,11 @@ const Type* SemaImpl::checkMember(MemberExpr* e, const Context& ctx, const Type*
     }
     if (s->kind == Symbol::Property) {
       resolveSignature(s);
-      if (s->pou->decl->access == Access::Private || s->pou->decl->access == Access::Protected) {
-        bool inside = isa<ThisExpr>(e->base) || isa<DerefExpr>(e->base);
-        if (!inside)
-          diags_.error(e->member.range.begin, "property '" + s->name + "' is " + (s->pou->decl->access == Access::Private ? "PRIVATE" : "PROTECTED"),
-                       "access").range(e->member.range);
+      checkAccess(s, ctx, e->member.range);
+      if (!readingLhs_ && !s->pou->decl->getter) {
+        diags_.error(e->member.range.begin, "property '" + s->name + "' has no GET accessor and cannot be read", "not-a-value")
+            .range(e->member.range).note(s->declRange.begin, "property declared here", s->declRange);
+        return types_.error();
       }
       return s->pou->returnType ? s->pou->returnType : types_.error();
     }
@@ -746,17 +831,30 @@ const Type* SemaImpl::checkUnary(UnaryExpr* e, const Context& ctx, const Type* e
   return types_.error();
 }
 
+// An integer division by a constant zero is reported where it is written.
+void SemaImpl::checkDivisor(BinaryExpr* e, const Context& ctx) {
+  if (!e->rhs->type || !valueType(e->rhs->type)->underlying()->isInteger()) return;
+  auto v = evalConst(e->rhs, ctx);
+  if (v && v->kind == ConstValue::Int && v->i == 0)
+    diags_.error(e->opLoc, "division by zero in a constant expression", "division-by-zero").range(e->range);
+}
+
 const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type* expected) {
   bool cmp = e->op >= BinaryOp::Lt && e->op <= BinaryOp::Ne;
   const Type* exp = cmp ? nullptr : expected;
   // Check the typed operand first so that a literal can take its type.
   const Type *lt, *rt;
-  if (isUntypedLiteral(e->lhs) && !isUntypedLiteral(e->rhs)) {
+  if (isBareEnumValueName(e->lhs, ctx) && !isBareEnumValueName(e->rhs, ctx)) {
+    // `Run = state`: the other operand decides which enumeration Run is from.
+    rt = valueType(checkExpr(e->rhs, ctx, exp));
+    lt = valueType(checkExpr(e->lhs, ctx, rt));
+  } else if (isUntypedLiteral(e->lhs) && !isUntypedLiteral(e->rhs)) {
     rt = valueType(checkExpr(e->rhs, ctx, exp));
     lt = valueType(checkExpr(e->lhs, ctx, rt->isNumeric() || rt->isBitString() ? rt : exp));
   } else {
     lt = valueType(checkExpr(e->lhs, ctx, exp));
-    rt = valueType(checkExpr(e->rhs, ctx, (isUntypedLiteral(e->rhs) && (lt->isNumeric() || lt->isBitString() || lt->underlying()->isNumeric())) ? lt : exp));
+    bool literalRhs = isUntypedLiteral(e->rhs) && (lt->isNumeric() || lt->isBitString() || lt->underlying()->isNumeric());
+    rt = valueType(checkExpr(e->rhs, ctx, literalRhs || lt->kind == TypeKind::Enum ? lt : exp));
   }
   if (lt->isError() || rt->isError()) return types_.error();
   const char* op = spelling(e->op);
@@ -795,6 +893,7 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
     }
     case BinaryOp::Mul:
     case BinaryOp::Div: {
+      if (e->op == BinaryOp::Div) checkDivisor(e, ctx);
       if ((e->op == BinaryOp::Mul || e->op == BinaryOp::Div) && ul->isDuration() && ur->isNumeric()) return lt;
       if (e->op == BinaryOp::Mul && ul->isNumeric() && ur->isDuration()) return rt;
       bool lnum = ul->isNumeric() || (codesys() && (ul->isBitString() || ul->kind == TypeKind::Enum));
@@ -811,6 +910,7 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
       return commonType(ul->kind == TypeKind::Enum ? ul->element : lt, ur->kind == TypeKind::Enum ? ur->element : rt, e->lhs, e->rhs, e->opLoc, op);
     }
     case BinaryOp::Mod: {
+      checkDivisor(e, ctx);
       bool lok = ul->isInteger() || (codesys() && ul->isBitString());
       bool rok = ur->isInteger() || (codesys() && ur->isBitString());
       if (!lok || !rok) return invalid();
@@ -824,6 +924,12 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
     case BinaryOp::Eq: case BinaryOp::Ne: {
       bool eq = e->op == BinaryOp::Eq || e->op == BinaryOp::Ne;
       if (lt == rt && (lt->isElementary() || lt->kind == TypeKind::Enum || lt->kind == TypeKind::Subrange)) return boolT;
+      // Enumerations compare only with the same enumeration (CODESYS: also integers).
+      if (lt->kind == TypeKind::Enum || rt->kind == TypeKind::Enum) {
+        const Type* other = lt->kind == TypeKind::Enum ? rt : lt;
+        if (codesys() && (other->underlying()->isInteger() || other->isBitString())) return boolT;
+        return invalid();
+      }
       if ((ul->isNumeric() || ul->isBitString() || ul->isBool()) && (ur->isNumeric() || ur->isBitString() || ur->isBool())) {
         if (ul->isBool() != ur->isBool() && !codesys()) return invalid();
         if (!commonType(ul, ur, e->lhs, e->rhs, e->opLoc, op)->isError()) return boolT;
@@ -865,6 +971,32 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
       return invalid();
   }
   return invalid();
+}
+
+// PRIVATE members are visible inside the declaring FB only; PROTECTED ones
+// also inside FBs derived from it.
+bool SemaImpl::checkAccess(Symbol* member, const Context& ctx, SourceRange where) {
+  if (!member || !member->pou || !member->pou->decl) return true;
+  Access a = member->pou->decl->access;
+  if (a != Access::Private && a != Access::Protected) return true;
+  Symbol* declaring = member->pou->owner;
+  Symbol* caller = ownerOf(ctx.pou);
+  bool ok = caller == declaring;
+  if (!ok && a == Access::Protected)
+    for (Symbol* b = caller && caller->pou ? caller->pou->base : nullptr; b && !ok; b = b->pou ? b->pou->base : nullptr) ok = b == declaring;
+  if (ok) return true;
+  const char* what = member->kind == Symbol::Property ? "property" : member->kind == Symbol::Action ? "action" : "method";
+  diags_.error(where.begin, std::string(what) + " '" + member->name + "' is " + (a == Access::Private ? "PRIVATE to '" : "PROTECTED in '") +
+                                (declaring ? declaring->name : std::string("?")) + "'", "access")
+      .range(where);
+  return false;
+}
+
+bool SemaImpl::isBareEnumValueName(Expr* e, const Context& ctx) {
+  auto* n = dyn_cast<NameExpr>(e);
+  if (!n) return false;
+  std::string up = upperCase(n->ident.name);
+  return !lookup(up, ctx) && enumValues_.count(up) && enumValues_[up].size() > 1;
 }
 
 // ------------------------------------------------------------------ calls
@@ -1059,10 +1191,12 @@ const Type* SemaImpl::checkCall(CallExpr* e, const Context& ctx, const Type* exp
         const Type* t = s->builtin->check(*this, *s->builtin, e, expected, ctx);
         return t ? t : types_.error();
       }
-      case Symbol::Function:
-      case Symbol::Program:
       case Symbol::Method:
       case Symbol::Action:
+        checkAccess(s, ctx, n->range);
+        return callPou(e, s, ctx, s->name, false);
+      case Symbol::Function:
+      case Symbol::Program:
         return callPou(e, s, ctx, s->name, false);
       case Symbol::Variable: {
         markUsed(s);
@@ -1111,8 +1245,7 @@ const Type* SemaImpl::checkCall(CallExpr* e, const Context& ctx, const Type* exp
                                (hint.empty() ? "" : "; did you mean '" + hint + "'?"), m->member.range);
       }
       if (s->kind == Symbol::Method || s->kind == Symbol::Action) {
-        if (s->pou->decl->access == Access::Private && !isa<ThisExpr>(m->base) && !isa<DerefExpr>(m->base))
-          diags_.error(m->member.range.begin, "method '" + s->name + "' is PRIVATE to '" + bt->name + "'", "access").range(m->member.range);
+        checkAccess(s, ctx, m->member.range);
         return callPou(e, s, ctx, bt->name + "." + s->name, false);
       }
       if (s->kind == Symbol::Variable) {

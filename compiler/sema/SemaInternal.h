@@ -109,6 +109,7 @@ public:
   bool isUntypedLiteral(const Expr* e) const;
   const Type* valueType(const Type* t) const { return t && t->isReference() ? t->element : t; }
   std::string conversionFunction(const Type* from, const Type* to) const;
+  size_t storedLength(const LiteralExpr* lit) const;
   void markUsed(Symbol* s);
   void recordCall(Symbol* target, SourceRange where);
 
@@ -120,11 +121,17 @@ public:
   void checkCase(CaseStmt* s, const Context& ctx, BodyState& st);
   void checkFor(ForStmt* s, const Context& ctx, BodyState& st);
   void checkRecursion();
+  void checkContainmentCycles();
+  bool checkAccess(Symbol* member, const Context& ctx, SourceRange where);
+  bool isBareEnumValueName(Expr* e, const Context& ctx);
+  void checkDivisor(BinaryExpr* e, const Context& ctx);
   void checkUnused();
 
   // ---------------------------------------------------------------- ConstEval.cpp
   std::optional<ConstValue> evalConst(Expr* e, const Context& ctx);
   std::optional<int64_t> evalInt(Expr* e, const Context& ctx, const char* what);
+  uint64_t sizeOf(const Type* t) const;
+  uint64_t alignOf(const Type* t) const;
 
   // ---------------------------------------------------------------- Builtins.cpp
   void registerBuiltins();
@@ -150,6 +157,10 @@ public:
   std::vector<std::unique_ptr<Scope>> scopes_;
   std::vector<std::pair<PouDecl*, Scope*>> pendingMembers_;
   BodyState* body_ = nullptr;                 // the body being checked, if any
+  bool constEvalFailed_ = false;              // evalConst hit an already reported error
+  std::vector<Symbol*> constStack_;
+  bool allowUnsigned_ = false;                // evalInt may return ULINT bit patterns           // constants being evaluated (cycle reports)
+  bool readingLhs_ = false;                   // checking an assignment target (properties need SET, not GET)
   Symbol* currentCaller_ = nullptr;
 };
 

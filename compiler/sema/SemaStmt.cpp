@@ -37,7 +37,7 @@ void SemaImpl::checkBody(Symbol* pou) {
   for (JmpStmt* j : st.jumps)
     if (!st.labels.count(upperCase(j->target.name)))
       diags_.error(j->target.range.begin, "use of undeclared label '" + j->target.name + "'", "undeclared-label").range(j->target.range);
-  if (st.resultVar && !st.resultAssigned && d->pouKind != PouKind::PropertySet && !d->isAbstract) {
+  if (st.resultVar && !st.resultAssigned && d->pouKind != PouKind::PropertySet && !d->isAbstract && !pi.returnType->isError()) {
     const char* what = d->pouKind == PouKind::PropertyGet ? "GET accessor of property" : pou->kind == Symbol::Function ? "function" : "method";
     SourceRange at = d->endRange.valid() ? d->endRange : d->name.range;
     diags_.warning(at.begin, std::string(what) + " '" + st.resultVar->name + "' never assigns its return value; it returns the default value of '" +
@@ -95,8 +95,14 @@ void SemaImpl::checkStmt(Stmt* s, const Context& ctx, BodyState& st) {
         auto* lit = dyn_cast<LiteralExpr>(a->rhs);
         if (lit && lit->litKind == LiteralExpr::Int && lit->intValue == 0) return;   // REF= 0 clears
         std::string why;
-        if (!isLvalue(a->rhs, ctx, why)) {
+        Symbol* decl = nullptr;
+        if (!isLvalue(a->rhs, ctx, why, &decl)) {
           diags_.error(a->rhs->range.begin, "'REF=' needs a variable on the right, not " + why, "not-assignable").range(a->rhs->range);
+          return;
+        }
+        if (decl && decl->var && decl->var->isConstant) {
+          diags_.error(a->rhs->range.begin, "cannot bind a reference to constant '" + decl->name + "'", "assign-constant")
+              .range(a->rhs->range).note(decl->declRange.begin, "declared CONSTANT here", decl->declRange);
           return;
         }
         Conv c = classify(rt, lt->element);
@@ -105,7 +111,9 @@ void SemaImpl::checkStmt(Stmt* s, const Context& ctx, BodyState& st) {
                        "type-mismatch").range(a->rhs->range);
         return;
       }
+      readingLhs_ = true;
       const Type* lt = checkExpr(a->lhs, ctx);
+      readingLhs_ = false;
       if (a->op == AssignStmt::Set || a->op == AssignStmt::Reset) {
         checkAssignTarget(a->lhs, ctx, &st);
         if (!lt->isError() && !valueType(lt)->isBool())
@@ -194,14 +202,18 @@ void SemaImpl::checkCase(CaseStmt* s, const Context& ctx, BodyState& st) {
       const Type* expect = sel->isError() ? nullptr : sel;
       checkExpr(lb.lo, ctx, expect);
       if (lb.hi) checkExpr(lb.hi, ctx, expect);
+      bool labelOk = true;
       if (!sel->isError() && ok) {
-        checkConversion(sel, lb.lo, "CASE label");
-        if (lb.hi) checkConversion(sel, lb.hi, "CASE label");
+        labelOk = checkConversion(sel, lb.lo, "CASE label");
+        if (lb.hi) labelOk = checkConversion(sel, lb.hi, "CASE label") && labelOk;
+        if (labelOk && sel->kind == TypeKind::Enum && lb.lo->type && valueType(lb.lo->type) != sel) labelOk = false;
       }
+      if (!labelOk || (lb.lo->type && lb.lo->type->isError())) continue;
+      constEvalFailed_ = false;
       auto lo = evalConst(lb.lo, ctx);
       std::optional<ConstValue> hi = lb.hi ? evalConst(lb.hi, ctx) : lo;
       if (!lo || !hi || lo->kind == ConstValue::Real || hi->kind == ConstValue::Real) {
-        if (lb.lo->type && !lb.lo->type->isError() && (!lo || !hi))
+        if (lb.lo->type && !lb.lo->type->isError() && (!lo || !hi) && !constEvalFailed_)
           diags_.error(lb.range.begin, "CASE label must be a constant", "not-constant").range(lb.range);
         continue;
       }
@@ -212,7 +224,12 @@ void SemaImpl::checkCase(CaseStmt* s, const Context& ctx, BodyState& st) {
       for (const Seen& p : seen) {
         if (lo->i <= p.hi && p.lo <= hi->i) {
           int64_t v = std::max(lo->i, p.lo);
-          diags_.error(lb.range.begin, "duplicate CASE value " + std::to_string(v), "duplicate-case")
+          // Name enumeration values by name.
+          std::string shown = std::to_string(v);
+          if (sel->kind == TypeKind::Enum)
+            for (auto& [n, ev] : sel->enumValues)
+              if (ev == v) { shown = n; break; }
+          diags_.error(lb.range.begin, "duplicate CASE value " + shown, "duplicate-case")
               .range(lb.range).note(p.range.begin, "previous CASE label is here", p.range);
           break;
         }
@@ -275,10 +292,12 @@ void SemaImpl::checkRecursion() {
                                                            : "recursive call cycle through '" + callee->name + "'; recursion is not allowed in IEC 61131-3",
                                   "recursion");
             d.range(where);
-            for (auto rit = stack.rbegin(); rit != stack.rend(); ++rit) {
-              d.note(rit->second.begin, "called from '" + rit->first->name + "' here", rit->second);
-              if (rit->first == callee) break;
-            }
+            // Notes walk the cycle only: from where `callee` was entered.
+            size_t k = stack.size();
+            for (size_t i = 0; i < stack.size(); ++i)
+              if (stack[i].first == callee) { k = i; break; }
+            for (size_t i = k; i < stack.size(); ++i)
+              d.note(stack[i].second.begin, "called from '" + stack[i].first->name + "' here", stack[i].second);
           }
           continue;
         }
@@ -323,6 +342,50 @@ namespace stc::sema {
 // CONFIGURATION / RESOURCE / TASK / PROGRAM ... WITH: the names and values
 // the scheduler will rely on.
 void SemaImpl::checkConfiguration(ConfigurationDecl* c, const Context& ctx) {
+  // VAR_CONFIG: Resource.Instance.var (or Instance.var) AT a full address,
+  // for a variable declared with an incomplete address (AT %I* / %Q*).
+  for (auto& cv : c->configVars) {
+    const auto& parts = cv.path.parts;
+    size_t i = 0;
+    const ResourceDecl* res = nullptr;
+    for (const ResourceDecl& r : c->resources)
+      if (!parts.empty() && upperCase(r.name.name) == upperCase(parts[0].name)) res = &r;
+    if (res) ++i;
+    if (parts.size() < i + 2) {
+      diags_.error(cv.path.range.begin, "VAR_CONFIG needs a path Resource.Instance.variable", "var-config").range(cv.path.range);
+      continue;
+    }
+    const ProgramConfig* inst = nullptr;
+    for (const ResourceDecl& r : c->resources) {
+      if (res && &r != res) continue;
+      for (const ProgramConfig& p : r.programs)
+        if (upperCase(p.name.name) == upperCase(parts[i].name)) inst = &p;
+    }
+    if (!inst) {
+      diags_.error(parts[i].range.begin, "unknown program instance '" + parts[i].name + "' in VAR_CONFIG", "var-config").range(parts[i].range);
+      continue;
+    }
+    Symbol* prog = lookupQualified(inst->type, ctx.outer, false, "program");
+    if (!prog || prog->kind != Symbol::Program) continue;
+    resolveSignature(prog);
+    const Ident& vn = parts[i + 1];
+    Symbol* var = prog->pou->vars->lookupLocal(upperCase(vn.name));
+    if (!var || !var->var) {
+      diags_.error(vn.range.begin, "program '" + prog->name + "' has no variable '" + vn.name + "'", "var-config").range(vn.range);
+      continue;
+    }
+    if (var->var->address.find('*') == std::string::npos) {
+      diags_.error(vn.range.begin, "'" + vn.name + "' is not declared with an incomplete address (AT %I* or %Q*); VAR_CONFIG can only locate such variables",
+                   "var-config").range(vn.range).note(var->declRange.begin, "declared here", var->declRange);
+      continue;
+    }
+    const Type* t = resolveType(cv.type, ctx);
+    if (!t->isError() && var->type && !var->type->isError() && t != var->type)
+      diags_.error(cv.type->range.begin, "VAR_CONFIG type '" + t->name + "' does not match '" + vn.name + "' of type '" + var->type->name + "'",
+                   "var-config").range(cv.type->range).note(var->declRange.begin, "declared here", var->declRange);
+    if (cv.address.find('*') != std::string::npos)
+      diags_.error(cv.range.begin, "VAR_CONFIG must give a complete address, not '" + cv.address + "'", "var-config").range(cv.range);
+  }
   for (ResourceDecl& r : c->resources) {
     std::map<std::string, const TaskDecl*> tasks;
     for (const TaskDecl& t : r.tasks) {
@@ -344,7 +407,8 @@ void SemaImpl::checkConfiguration(ConfigurationDecl* c, const Context& ctx) {
           continue;
         }
         checkExpr(init.value, ctx, want);
-        checkConversion(want, init.value, "task property");
+        bool constPriority = n == "PRIORITY" && evalConst(init.value, ctx).has_value();
+        if (!constPriority) checkConversion(want, init.value, "task property");
         if (n == "PRIORITY")
           if (auto v = evalConst(init.value, ctx); v && (v->i < 0 || v->i > 31))
             diags_.error(init.value->range.begin, "task priority " + std::to_string(v->i) + " is outside 0..31", "task").range(init.value->range);
@@ -384,6 +448,56 @@ void SemaImpl::checkConfiguration(ConfigurationDecl* c, const Context& ctx) {
       }
     }
   }
+}
+
+}  // namespace stc::sema
+
+namespace stc::sema {
+
+// A structure or function block that contains itself by value (directly,
+// through arrays, or through other types) would have infinite size.
+void SemaImpl::checkContainmentCycles() {
+  std::map<const Type*, int> state;   // 0 new, 1 in progress, 2 done
+  std::set<const Type*> reported;
+  std::vector<std::pair<const Type*, VarDecl*>> path;   // type being visited, member being followed
+  std::function<void(const Type*, VarDecl*)> visit = [&](const Type* t, VarDecl* via) {
+    while (t && t->kind == TypeKind::Array) t = t->element;
+    if (!t || !(t->kind == TypeKind::Struct || t->kind == TypeKind::Union || t->kind == TypeKind::FunctionBlock)) return;
+    int& st = state[t];
+    if (st == 2) return;
+    if (st == 1) {
+      // Report at the member of `t` that starts the cycle.
+      VarDecl* at = via;
+      for (auto& [pt, pm] : path)
+        if (pt == t) { at = pm; break; }
+      if (at && reported.insert(t).second)
+        diags_.error(at->name.range.begin, "'" + t->name + "' cannot contain itself: this member makes its size infinite (use a POINTER TO or "
+                                               "REFERENCE TO)", "type-cycle").range(at->type ? at->type->range : at->name.range);
+      return;
+    }
+    st = 1;
+    if (t->kind == TypeKind::FunctionBlock) {
+      for (Symbol* p = t->pou; p && p->pou; p = p->pou->base)
+        for (VarBlock& b : p->pou->decl->varBlocks)
+          for (VarDecl* v : b.vars)
+            if (v->section != VarSection::InOut && v->section != VarSection::Temp && v->section != VarSection::External) {
+              path.push_back({t, v});
+              visit(v->resolvedType, v);
+              path.pop_back();
+            }
+    } else {
+      for (const Type* s = t; s; s = s->base)
+        for (const Member& m : s->members) {
+          path.push_back({t, m.decl});
+          visit(m.type, m.decl);
+          path.pop_back();
+        }
+    }
+    state[t] = 2;
+  };
+  for (Symbol* t : typeSymbols_) visit(t->type, nullptr);
+  for (Symbol* p : pous_)
+    if (p->kind == Symbol::FunctionBlock) visit(p->type, nullptr);
 }
 
 }  // namespace stc::sema

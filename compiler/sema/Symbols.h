@@ -44,6 +44,7 @@ struct Symbol {
   const Builtin* builtin = nullptr;
   Symbol* parentNamespace = nullptr;
   bool resolving = false;               // cycle detection while resolving types / constants
+  bool cyclic = false;                  // a constant on a reported definition cycle
 
   bool isPou() const { return kind >= Function && kind <= Action; }
   bool isCallableUnit() const { return kind == Function || kind == Method || kind == Action || kind == Program; }
