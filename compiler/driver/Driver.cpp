@@ -2,6 +2,7 @@
 
 #include <pthread.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <thread>
@@ -82,9 +83,14 @@ bool Compilation::check(const CompileOptions& opts) {
     bool ok = true;
   };
   std::vector<FileResult> results(all.size());
+  // Largest files first, so the workers finish at about the same time.
+  std::vector<size_t> order(all.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return sm_.file(all[a]).text.size() > sm_.file(all[b]).text.size(); });
   std::atomic<size_t> next{0};
   auto worker = [&] {
-    for (size_t i = next++; i < all.size(); i = next++) {
+    for (size_t k = next++; k < all.size(); k = next++) {
+      size_t i = order[k];
       FileResult& r = results[i];
       r.ast = std::make_unique<ast::ASTContext>();
       r.diags = std::make_unique<DiagnosticsEngine>(sm_);

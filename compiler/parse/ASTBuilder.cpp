@@ -21,6 +21,38 @@ template <typename T, typename B> T* as(B* node) {
   return node && typeid(*node) == typeid(T) ? static_cast<T*>(node) : nullptr;
 }
 
+// Positional child access for the hot paths.  The generated accessors scan
+// all children with dynamic_cast; here a child is tested with typeid
+// (terminals) or its rule index (rule contexts derive non-virtually from
+// ParseTree, so the static_cast is valid).
+bool isTerminal(antlr4::tree::ParseTree* p) {
+  const std::type_info& ti = typeid(*p);
+  return ti == typeid(antlr4::tree::TerminalNodeImpl) || ti == typeid(antlr4::tree::ErrorNodeImpl);
+}
+
+antlr4::Token* tokenAt(antlr4::ParserRuleContext* c, size_t i) {
+  if (i >= c->children.size()) return nullptr;
+  antlr4::tree::ParseTree* p = c->children[i];
+  if (typeid(*p) != typeid(antlr4::tree::TerminalNodeImpl)) return nullptr;
+  return static_cast<antlr4::tree::TerminalNode*>(p)->getSymbol();
+}
+
+template <typename T> T* ruleAt(antlr4::ParserRuleContext* c, size_t i, size_t ruleIndex) {
+  if (i >= c->children.size()) return nullptr;
+  antlr4::tree::ParseTree* p = c->children[i];
+  if (isTerminal(p)) return nullptr;
+  auto* r = static_cast<antlr4::ParserRuleContext*>(p);
+  return r->getRuleIndex() == ruleIndex ? static_cast<T*>(r) : nullptr;
+}
+
+template <typename T, typename F> void forEachRule(antlr4::ParserRuleContext* c, size_t ruleIndex, F&& f) {
+  for (antlr4::tree::ParseTree* p : c->children) {
+    if (isTerminal(p)) continue;
+    auto* r = static_cast<antlr4::ParserRuleContext*>(p);
+    if (r->getRuleIndex() == ruleIndex) f(static_cast<T*>(r));
+  }
+}
+
 std::string upper(std::string_view s) {
   std::string r(s);
   for (char& c : r) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -569,9 +601,10 @@ private:
   std::vector<Stmt*> body(P::BodyContext* c) {
     std::vector<Stmt*> out;
     if (!c) return out;
-    out.reserve(c->statement().size());
-    for (auto* s : c->statement())
+    out.reserve(c->children.size());
+    forEachRule<P::StatementContext>(c, P::RuleStatement, [&](P::StatementContext* s) {
       if (Stmt* st = statement(s)) out.push_back(st);
+    });
     return out;
   }
 
@@ -583,7 +616,7 @@ private:
       s->stmt = l->statement() ? statement(l->statement()) : nullptr;
       return s->label.empty() ? nullptr : s;
     }
-    if (auto* p = as<P::PlainStmtContext>(c)) return unlabeled(p->unlabeledStatement());
+    if (auto* p = as<P::PlainStmtContext>(c)) return unlabeled(ruleAt<P::UnlabeledStatementContext>(p, 0, P::RuleUnlabeledStatement));
     return nullptr;
   }
 
@@ -715,15 +748,16 @@ private:
     a.range = range(c);
     if (auto* n = as<P::NamedInputContext>(c)) {
       a.kind = Argument::Input;
-      a.name = ident(n->IDENTIFIER());
-      a.value = n->expression() ? expr(n->expression()) : nullptr;
+      a.name = ident(tokenAt(n, 0));
+      auto* v = ruleAt<P::ExpressionContext>(n, 2, P::RuleExpression);
+      a.value = v ? expr(v) : nullptr;
     } else if (auto* o = as<P::NamedOutputContext>(c)) {
       a.kind = Argument::Output;
       a.name = ident(o->IDENTIFIER());
       a.negated = o->NOT() != nullptr;
       a.value = o->expression() ? expr(o->expression()) : nullptr;
     } else if (auto* p = as<P::PositionalArgContext>(c)) {
-      a.value = expr(p->expression());
+      a.value = expr(ruleAt<P::ExpressionContext>(p, 0, P::RuleExpression));
     }
     return a;
   }
@@ -752,10 +786,9 @@ private:
 
   Expr* expr(P::ExpressionContext* c) {
     if (!c) return nullptr;
-    if (auto* l = as<P::LiteralExprContext>(c)) return literal(l->literal());
     if (auto* n = as<P::NameExprContext>(c)) {
       auto* e = ctx_.make<NameExpr>();
-      e->ident = ident(n->IDENTIFIER());
+      e->ident = ident(tokenAt(n, 0));
       e->range = e->ident.range;
       return e->ident.empty() ? nullptr : e;
     }
@@ -775,18 +808,20 @@ private:
       e->text = std::string(text(a->DIRECT_ADDRESS()));
       return e;
     }
+    if (auto* l = as<P::LiteralExprContext>(c)) return literal(ruleAt<P::LiteralContext>(l, 0, P::RuleLiteral));
     if (auto* p = as<P::ParenExprContext>(c)) {
-      Expr* inner = expr(p->expression());
+      Expr* inner = expr(ruleAt<P::ExpressionContext>(p, 1, P::RuleExpression));
       if (inner) inner->range = range(p);
       return inner;
     }
     if (auto* m = as<P::MemberExprContext>(c)) {
       auto* e = ctx_.make<MemberExpr>();
       e->range = range(m);
-      e->base = expr(m->expression());
+      e->base = expr(ruleAt<P::ExpressionContext>(m, 0, P::RuleExpression));
       if (!e->base) return nullptr;
-      if (m->IDENTIFIER()) {
-        e->member = ident(m->IDENTIFIER());
+      antlr4::Token* mt = tokenAt(m, 2);
+      if (mt && mt->getType() == STLexer::IDENTIFIER) {
+        e->member = ident(mt);
       } else if (m->INTEGER_LITERAL()) {
         e->access = MemberExpr::Bit;
         e->member = ident(m->INTEGER_LITERAL());
@@ -819,14 +854,14 @@ private:
     if (auto* k = as<P::CallExprContext>(c)) {
       auto* e = ctx_.make<CallExpr>();
       e->range = range(k);
-      e->callee = expr(k->expression());
+      e->callee = expr(ruleAt<P::ExpressionContext>(k, 0, P::RuleExpression));
       if (!e->callee) return nullptr;
-      for (auto* a : k->callArgument()) e->args.push_back(argument(a));
+      forEachRule<P::CallArgumentContext>(k, P::RuleCallArgument, [&](P::CallArgumentContext* a) { e->args.push_back(argument(a)); });
       if (k->LPAREN()) e->parenRange = SourceRange(loc(k->LPAREN()->getSymbol()), range(k).end);
       return e;
     }
     if (auto* u = as<P::UnaryExprContext>(c)) {
-      Expr* operand = expr(u->expression());
+      Expr* operand = expr(ruleAt<P::ExpressionContext>(u, 1, P::RuleExpression));
       if (!operand || !u->op) return nullptr;
       // Fold '-' into a numeric literal so that -128 fits SINT.
       if (u->op->getType() == STLexer::MINUS) {
@@ -849,8 +884,8 @@ private:
     if (auto* b = as<P::BinaryExprContext>(c)) {
       auto* e = ctx_.make<BinaryExpr>();
       e->range = range(b);
-      e->lhs = expr(b->expression(0));
-      e->rhs = expr(b->expression(1));
+      e->lhs = expr(ruleAt<P::ExpressionContext>(b, 0, P::RuleExpression));
+      e->rhs = expr(ruleAt<P::ExpressionContext>(b, 2, P::RuleExpression));
       if (!e->lhs || !e->rhs || !b->op) return nullptr;
       e->op = binaryOp(b->op->getType());
       e->opLoc = loc(b->op);
@@ -1078,7 +1113,7 @@ private:
     if (!c) return nullptr;
     auto* e = ctx_.make<LiteralExpr>();
     e->range = range(c);
-    if (auto* tl = c->typedLiteral()) {
+    if (auto* tl = ruleAt<P::TypedLiteralContext>(c, 0, P::RuleTypedLiteral)) {
       auto ids = tl->IDENTIFIER();
       if (ids.empty()) return nullptr;
       e->typePrefix = ident(ids[0]);

@@ -440,6 +440,7 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
       SourceLoc l = here(tok.get());
       char q = t[tok->getStartIndex()];
       diags.error(l, std::string("missing terminating ") + q + " character", "syntax").range(rangeOf(file.id, tok.get()));
+      out.unterminatedStrings.push_back(static_cast<uint32_t>(tok->getStartIndex()));
       static_cast<antlr4::CommonToken*>(tok.get())->setType(q == '\'' ? STLexer::STRING_LITERAL : STLexer::WSTRING_LITERAL);
       type = tok->getType();
     }

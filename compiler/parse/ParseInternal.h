@@ -1,6 +1,7 @@
 // Shared between the files of compiler/parse only (includes ANTLR).
 #pragma once
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <vector>
@@ -58,6 +59,22 @@ private:
   std::vector<uint8_t> failedComment_;   // openers known not to close
 };
 
+// A token stream whose tokens the error recovery can edit between parses
+// (retype a misspelled keyword, insert a missing ';').
+class TokenEditStream : public antlr4::CommonTokenStream {
+public:
+  using antlr4::CommonTokenStream::CommonTokenStream;
+  // All tokens, EOF last; edits must be followed by renumber().
+  std::vector<std::unique_ptr<antlr4::Token>>& tokens() {
+    fill();
+    return _tokens;
+  }
+  void renumber(size_t from) {
+    for (size_t i = from; i < _tokens.size(); ++i)
+      if (auto* w = dynamic_cast<antlr4::WritableToken*>(_tokens[i].get())) w->setTokenIndex(i);
+  }
+};
+
 // Result of the lexing stage for one file.
 struct LexedFile {
   // Tokens keep pointers to their lexer and char stream (ANTLR's error
@@ -66,6 +83,10 @@ struct LexedFile {
   std::unique_ptr<STLexer> lexer;
   std::vector<std::unique_ptr<antlr4::Token>> tokens;   // default channel, then EOF
   std::map<uint32_t, std::vector<ast::Pragma>> attributesAt;  // offset of the next token -> attributes
+  std::vector<uint32_t> unterminatedStrings;   // start offsets (ascending) of strings missing their closing quote
+  bool isUnterminatedString(const antlr4::Token* t) const {
+    return t && std::binary_search(unterminatedStrings.begin(), unterminatedStrings.end(), static_cast<uint32_t>(t->getStartIndex()));
+  }
 };
 
 // Rewrites full-width punctuation to ASCII in place (warning + fix-it).
@@ -79,8 +100,13 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
 void buildAST(STParser::CompilationUnitContext* cu, const SourceFile& file, const LexedFile& lexed,
               DiagnosticsEngine& diags, ast::ASTContext& ctx, ast::SourceUnit& unit);
 
-// Error strategy producing clang-style syntax diagnostics.
-std::shared_ptr<antlr4::DefaultErrorStrategy> makeErrorStrategy(const SourceFile& file, DiagnosticsEngine& diags);
+// Stage 2 of parsing, after the fast SLL stage failed: full LL with error
+// recovery and clang-style diagnostics (SyntaxErrors.cpp).  Before the final
+// parse, mistakes with a clear fix (misspelled keyword, keyword used as a
+// name, missing ';') are repaired in the token stream and reported once, so
+// that they do not cause follow-on errors.  The tree is owned by `parser`.
+STParser::CompilationUnitContext* parseWithRecovery(STParser& parser, TokenEditStream& stream, const SourceFile& file,
+                                                    const LexedFile& lexed, DiagnosticsEngine& diags);
 
 constexpr size_t kNoTokenIndex = static_cast<size_t>(-1);
 

@@ -69,7 +69,7 @@ bool parseFile(SourceManager& sm, uint32_t fileId, DiagnosticsEngine& diags, ast
     // attribute lookups (only offsets are needed, which live in lexed).
     std::vector<std::unique_ptr<antlr4::Token>> toks = std::move(lexed.tokens);
     antlr4::ListTokenSource source(std::move(toks));
-    antlr4::CommonTokenStream stream(&source);
+    TokenEditStream stream(&source);
     STParser parser(&stream);
     parser.removeErrorListeners();
 
@@ -85,11 +85,8 @@ bool parseFile(SourceManager& sm, uint32_t fileId, DiagnosticsEngine& diags, ast
     if (!cu) {
       // Stage 2: full LL with error recovery and our diagnostics.
       if (stats) stats->usedLLFallback = true;
-      stream.seek(0);
-      parser.reset();
       parser.getInterpreter<antlr4::atn::ParserATNSimulator>()->setPredictionMode(antlr4::atn::PredictionMode::LL);
-      parser.setErrorHandler(makeErrorStrategy(file, diags));
-      cu = parser.compilationUnit();
+      cu = parseWithRecovery(parser, stream, file, lexed, diags);
     }
     if (stats) stats->parseSeconds += secondsSince(t1);
     auto t2 = clock::now();

@@ -139,6 +139,17 @@ std::optional<ConstValue> SemaImpl::evalConst(Expr* e, const Context& ctx) {
         c->target->name.find("_TO_") != std::string::npos && e->type && e->type->isInteger()) {
       auto v = evalConst(c->args[0].value, ctx);
       if (v && v->kind == ConstValue::Real) { v->kind = ConstValue::Int; v->i = static_cast<int64_t>(std::llround(v->r)); }
+      if (v) {
+        // The target type's width and signedness: WORD_TO_INT(16#FF00) = -256.
+        unsigned bits = e->type->bits();
+        if (bits < 64) {
+          uint64_t mask = (1ull << bits) - 1;
+          uint64_t u = static_cast<uint64_t>(v->i) & mask;
+          if (e->type->isSignedInt() && (u >> (bits - 1))) u |= ~mask;
+          v->i = static_cast<int64_t>(u);
+        }
+        v->kind = ConstValue::Int;
+      }
       return v;
     }
   }

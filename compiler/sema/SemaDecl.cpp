@@ -9,7 +9,8 @@ namespace stc::sema {
 
 std::string upperCase(std::string_view s) {
   std::string r(s);
-  for (char& c : r) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  for (char& c : r)
+    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');   // identifiers are ASCII
   return r;
 }
 
