@@ -24,6 +24,15 @@ bool isTimeLike(const Type* t) { return t->isDuration() || t->isDate(); }
 
 }  // namespace
 
+// "<message>; did you mean 'X'?" with a fix-it, when a close name exists.
+void SemaImpl::errorWithHint(SourceRange r, const std::string& message, const std::string& name, const std::vector<std::string>& candidates,
+                             const char* code) {
+  std::string hint = closestMatch(name, candidates);
+  auto d = diags_.error(r.begin, message + (hint.empty() ? "" : "; did you mean '" + hint + "'?"), code);
+  d.range(r);
+  if (!hint.empty()) d.fixit(r, hint);
+}
+
 void SemaImpl::markUsed(Symbol* s) {
   if (s && s->var) s->var->used = true;
 }
@@ -530,11 +539,7 @@ const Type* SemaImpl::checkName(NameExpr* e, const Context& ctx, const Type* exp
     }
   }
   if (!s) {
-    std::string hint = closestMatch(e->ident.name, visibleNames(ctx));
-    auto d = diags_.error(e->range.begin, "use of undeclared identifier '" + e->ident.name + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"),
-                          "undeclared-name");
-    d.range(e->range);
-    if (!hint.empty()) d.fixit(e->range, hint);
+    errorWithHint(e->range, "use of undeclared identifier '" + e->ident.name + "'", e->ident.name, visibleNames(ctx), "undeclared-name");
     return types_.error();
   }
   e->symbol = s;
@@ -660,11 +665,7 @@ const Type* SemaImpl::checkMember(MemberExpr* e, const Context& ctx, const Type*
     std::vector<std::string> names;
     for (const Type* t = bt; t; t = t->base)
       for (const Member& m : t->members) names.push_back(m.name);
-    std::string hint = closestMatch(e->member.name, names);
-    auto d = diags_.error(e->member.range.begin, "no member named '" + e->member.name + "' in '" + bt->name + "'" +
-                                                     (hint.empty() ? "" : "; did you mean '" + hint + "'?"), "no-member");
-    d.range(e->member.range);
-    if (!hint.empty()) d.fixit(e->member.range, hint);
+    errorWithHint(e->member.range, "no member named '" + e->member.name + "' in '" + bt->name + "'", e->member.name, names, "no-member");
     return types_.error();
   }
   if (isPouType(bt)) {
@@ -678,11 +679,7 @@ const Type* SemaImpl::checkMember(MemberExpr* e, const Context& ctx, const Type*
         for (Symbol* x : p->pou->members->symbols()) names.push_back(x->name);
         if (p->pou->base == owner) break;
       }
-      std::string hint = closestMatch(e->member.name, names);
-      auto d = diags_.error(e->member.range.begin, "no member named '" + e->member.name + "' in '" + bt->name + "'" +
-                                                       (hint.empty() ? "" : "; did you mean '" + hint + "'?"), "no-member");
-      d.range(e->member.range);
-      if (!hint.empty()) d.fixit(e->member.range, hint);
+      errorWithHint(e->member.range, "no member named '" + e->member.name + "' in '" + bt->name + "'", e->member.name, names, "no-member");
       return types_.error();
     }
     e->symbol = s;
@@ -1078,11 +1075,7 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
     if (!p) {
       std::vector<std::string> names;
       for (Symbol* q : params) names.push_back(q->name);
-      std::string hint = closestMatch(a.name.name, names);
-      auto d = diags_.error(a.name.range.begin, "'" + callee + "' has no parameter named '" + a.name.name + "'" +
-                                                    (hint.empty() ? "" : "; did you mean '" + hint + "'?"), "call-args");
-      d.range(a.name.range);
-      if (!hint.empty()) d.fixit(a.name.range, hint);
+      errorWithHint(a.name.range, "'" + callee + "' has no parameter named '" + a.name.name + "'", a.name.name, names, "call-args");
       if (a.value) checkExpr(a.value, ctx);
       continue;
     }
@@ -1174,11 +1167,7 @@ const Type* SemaImpl::checkCall(CallExpr* e, const Context& ctx, const Type* exp
     if (!s) {
       std::vector<std::string> names = visibleNames(ctx);
       for (auto& [k, b] : builtinMap_) names.push_back(b->name);
-      std::string hint = closestMatch(n->ident.name, names);
-      auto d = diags_.error(n->range.begin, "call to undeclared function '" + n->ident.name + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"),
-                            "undeclared-name");
-      d.range(n->range);
-      if (!hint.empty()) d.fixit(n->range, hint);
+      errorWithHint(n->range, "call to undeclared function '" + n->ident.name + "'", n->ident.name, names, "undeclared-name");
       for (Argument& a : e->args)
         if (a.value) checkExpr(a.value, ctx);
       return types_.error();

@@ -111,6 +111,8 @@ public:
   std::string conversionFunction(const Type* from, const Type* to) const;
   size_t storedLength(const LiteralExpr* lit) const;
   void markUsed(Symbol* s);
+  void errorWithHint(SourceRange r, const std::string& message, const std::string& name, const std::vector<std::string>& candidates,
+                     const char* code);
   void recordCall(Symbol* target, SourceRange where);
 
   // ---------------------------------------------------------------- SemaStmt.cpp
