@@ -141,6 +141,17 @@ public:
   }
 
 protected:
+  // Deleting a ';' or an END_xxx to make the input fit would join two
+  // statements or blocks (`x := x + ; y := 1;` would read `x := x + y`) and
+  // cause follow-on errors; the normal recovery resynchronises at them.
+  antlr4::Token* singleTokenDeletion(antlr4::Parser* p) override {
+    size_t t = p->getTokenStream()->LA(1);
+    if (t == STLexer::SEMI || endsStatementList(t) || t == STLexer::END_VAR || t == STLexer::END_TYPE ||
+        t == STLexer::END_STRUCT)
+      return nullptr;
+    return DefaultErrorStrategy::singleTokenDeletion(p);
+  }
+
   bool prefersSemicolonInsertion(antlr4::Parser* p) {
     if (!has(getExpectedTokens(p), STLexer::SEMI)) return false;
     antlr4::Token* cur = p->getTokenStream()->LT(1);
@@ -376,16 +387,20 @@ public:
       : parser_(parser), stream_(stream), file_(file), lexed_(lexed), diags_(diags) {}
 
   STParser::CompilationUnitContext* parse() {
-    auto& toks = stream_.tokens();
-    // Each attempt is a full parse; bound the work on large broken files.
-    size_t budget = std::clamp<size_t>(1000000 / std::max<size_t>(toks.size(), 1), 2, 40);
     Run cur = run();
+    // Each attempt is a full parse, and recovering from many errors is slow:
+    // bound the work on large or badly broken files (they then get fewer
+    // repairs, never different ones), and stop where the error limit would
+    // hide the rest anyway.
+    size_t work = stream_.tokens().size() + 20 * cur.errors.size();
+    size_t budget = std::clamp<size_t>(400000 / std::max<size_t>(work, 1), 1, 40);
+    size_t maxPoints = diags_.opts.errorLimit ? diags_.opts.errorLimit : static_cast<size_t>(-1);
     bool curIsLast = true;
     uint32_t cursorOffset = 0;
     size_t cursorIndex = 0;
     bool haveCursor = false;
     std::vector<Diagnostic> repairDiags;
-    while (budget > 0) {
+    for (size_t points = 0; budget > 0 && points < maxPoints; ++points) {
       // The next error after the cursor.
       const ErrorPoint* e = nullptr;
       for (const ErrorPoint& x : cur.errors)
