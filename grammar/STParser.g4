@@ -99,7 +99,10 @@ interfaceDecl
       END_INTERFACE
     ;
 
-body : statement* ;
+// A body is a sequence of statements, each optionally labelled (`lbl: x := 1;`).
+// Labels are tokens of the body itself rather than a wrapper rule, which saves a
+// parse-tree node per statement.
+body : ( IDENTIFIER COLON | unlabeledStatement )* ;
 
 // ---------------------------------------------------------------- variables
 varBlock
@@ -152,11 +155,6 @@ varConfigBlock : VAR_CONFIG varConfigItem* END_VAR ;
 varConfigItem : qualifiedName AT DIRECT_ADDRESS COLON typeSpec ( ASSIGN initializer )? SEMI ;
 
 // ---------------------------------------------------------------- statements
-statement
-    : IDENTIFIER COLON statement                                   # labeledStmt
-    | unlabeledStatement                                           # plainStmt
-    ;
-
 // CASE bodies cannot hold labels: `Red:` there starts the next case element.
 caseBody : unlabeledStatement* ;
 
@@ -188,7 +186,9 @@ caseLabel : lo=expression ( RANGE hi=expression )? ;
 // (CODESYS) share the level of AND / OR.  Primaries are alternatives of this
 // rule (not a rule of their own) to save a parse-tree node per operand.
 expression
-    : literal                                                          # literalExpr
+    : ( INTEGER_LITERAL | REAL_LITERAL | BASED_LITERAL | TRUE | FALSE | STRING_LITERAL | WSTRING_LITERAL
+      | TIME_LITERAL | DATE_LITERAL | TOD_LITERAL | DATE_TIME_LITERAL )                 # simpleLiteralExpr
+    | typedLiteral                                                     # typedLiteralExpr
     | IDENTIFIER                                                       # nameExpr
     | THIS                                                             # thisExpr
     | SUPER                                                            # superExpr
@@ -213,21 +213,6 @@ callArgument
     : IDENTIFIER ASSIGN expression?             # namedInput
     | NOT? IDENTIFIER OUTPUT_ASSIGN expression? # namedOutput
     | expression                                # positionalArg
-    ;
-
-literal
-    : INTEGER_LITERAL
-    | REAL_LITERAL
-    | BASED_LITERAL
-    | TRUE
-    | FALSE
-    | STRING_LITERAL
-    | WSTRING_LITERAL
-    | TIME_LITERAL
-    | DATE_LITERAL
-    | TOD_LITERAL
-    | DATE_TIME_LITERAL
-    | typedLiteral
     ;
 
 // INT#5, REAL#-1.5, DWORD#16#FF, BOOL#TRUE, Color#Red, STRING#'x'

@@ -602,22 +602,39 @@ private:
     std::vector<Stmt*> out;
     if (!c) return out;
     out.reserve(c->children.size());
-    forEachRule<P::StatementContext>(c, P::RuleStatement, [&](P::StatementContext* s) {
-      if (Stmt* st = statement(s)) out.push_back(st);
-    });
-    return out;
-  }
-
-  Stmt* statement(P::StatementContext* c) {
-    if (auto* l = as<P::LabeledStmtContext>(c)) {
-      auto* s = ctx_.make<LabelStmt>();
-      s->range = range(l);
-      s->label = ident(l->IDENTIFIER());
-      s->stmt = l->statement() ? statement(l->statement()) : nullptr;
-      return s->label.empty() ? nullptr : s;
+    // Children: IDENTIFIER ':' pairs (labels) and unlabeledStatement contexts.
+    std::vector<antlr4::Token*> labels;
+    auto wrap = [&](Stmt* st, antlr4::Token* endTok) -> Stmt* {
+      for (auto it = labels.rbegin(); it != labels.rend(); ++it) {
+        auto* l = ctx_.make<LabelStmt>();
+        l->label = ident(*it);
+        l->range = SourceRange(loc(*it), st ? st->range.end : range(endTok).end);
+        l->stmt = st;
+        st = l;
+      }
+      labels.clear();
+      return st;
+    };
+    for (antlr4::tree::ParseTree* ch : c->children) {
+      if (isTerminal(ch)) {
+        antlr4::Token* t = typeid(*ch) == typeid(antlr4::tree::TerminalNodeImpl) ? static_cast<antlr4::tree::TerminalNode*>(ch)->getSymbol() : nullptr;
+        if (t && t->getType() == STLexer::IDENTIFIER && !conjured(t)) labels.push_back(t);
+        continue;
+      }
+      auto* r = static_cast<antlr4::ParserRuleContext*>(ch);
+      if (r->getRuleIndex() != P::RuleUnlabeledStatement) continue;
+      Stmt* st = unlabeled(static_cast<P::UnlabeledStatementContext*>(r));
+      if (!labels.empty()) st = wrap(st, r->getStop());
+      if (st) out.push_back(st);
     }
-    if (auto* p = as<P::PlainStmtContext>(c)) return unlabeled(ruleAt<P::UnlabeledStatementContext>(p, 0, P::RuleUnlabeledStatement));
-    return nullptr;
+    if (!labels.empty()) {
+      // A label at the end of a body labels an empty statement.
+      antlr4::Token* last = labels.back();
+      auto* empty = ctx_.make<SimpleStmt>(Stmt::Empty);
+      empty->range = SourceRange(range(last).end);
+      out.push_back(wrap(empty, last));
+    }
+    return out;
   }
 
   Stmt* unlabeled(P::UnlabeledStatementContext* c) {
@@ -808,7 +825,8 @@ private:
       e->text = std::string(text(a->DIRECT_ADDRESS()));
       return e;
     }
-    if (auto* l = as<P::LiteralExprContext>(c)) return literal(ruleAt<P::LiteralContext>(l, 0, P::RuleLiteral));
+    if (auto* l = as<P::SimpleLiteralExprContext>(c)) return literal(l);
+    if (auto* l = as<P::TypedLiteralExprContext>(c)) return literal(l);
     if (auto* p = as<P::ParenExprContext>(c)) {
       Expr* inner = expr(ruleAt<P::ExpressionContext>(p, 1, P::RuleExpression));
       if (inner) inner->range = range(p);
@@ -1109,7 +1127,9 @@ private:
     return true;
   }
 
-  Expr* literal(P::LiteralContext* c) {
+  // `c` is a simpleLiteralExpr (its first token is the literal) or a
+  // typedLiteralExpr (its child is the typedLiteral rule).
+  Expr* literal(antlr4::ParserRuleContext* c) {
     if (!c) return nullptr;
     auto* e = ctx_.make<LiteralExpr>();
     e->range = range(c);

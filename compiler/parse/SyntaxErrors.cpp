@@ -237,7 +237,7 @@ protected:
     for (antlr4::tree::ParseTree* c = p->getContext(); c; c = c->parent) {
       if (auto* s = dynamic_cast<antlr4::ParserRuleContext*>(c)) {
         if (c == p->getContext() && dynamic_cast<STParser::ForStmtContext*>(c)) e.inForHeader = true;
-        if (dynamic_cast<STParser::UnlabeledStatementContext*>(c) || dynamic_cast<STParser::StatementContext*>(c)) {
+        if (dynamic_cast<STParser::UnlabeledStatementContext*>(c)) {
           if (s->getStart() && s->getStart()->getTokenIndex() != kNoTokenIndex) e.stmtStart = s->getStart()->getTokenIndex();
           break;
         }
