@@ -1345,6 +1345,13 @@ void SemaImpl::checkAssignTarget(Expr* lhs, const Context& ctx, BodyState* body)
         .range(lhs->range).note(decl->declRange.begin, "declared CONSTANT here", decl->declRange);
     return;
   }
+  // A function's or method's input is a copy: writing it is legal but the
+  // caller never sees the change, which is almost always a mistake.
+  if (decl->var->section == VarSection::Input && ctx.pou && ctx.pou->pou && (ctx.pou->kind == Symbol::Function || ctx.pou->kind == Symbol::Method) &&
+      ctx.pou->pou->vars->lookupLocal(upperCase(decl->name)) == decl)
+    diags_.warning(lhs->range.begin, "assignment to input '" + decl->name + "' of " + (ctx.pou->kind == Symbol::Function ? "function" : "method") +
+                                         " '" + ctx.pou->name + "'; the caller does not see the change", "assign-input")
+        .range(lhs->range).note(decl->declRange.begin, "declared VAR_INPUT here", decl->declRange);
   if (body)
     for (auto& [v, f] : body->forVars)
       if (v == decl) {
