@@ -137,8 +137,8 @@ bool Compilation::check(const CompileOptions& opts) {
   if (!parsed) return false;   // semantic analysis of a broken tree only repeats the syntax errors
   sema::SemaOptions so;
   so.dialect = dialect_;
-  sema::Sema sema(*ast_, diags_, so);
-  bool ok = sema.run();
+  sema_ = std::make_unique<sema::Sema>(*ast_, diags_, so);
+  bool ok = sema_->run();
   stats_.semaSeconds = std::chrono::duration<double>(clock::now() - t1).count();
   return ok && !diags_.hasErrors();
 }

@@ -64,6 +64,8 @@ private:
   SourceManager sm_;
   DiagnosticsEngine diags_;
   std::unique_ptr<ast::ASTContext> ast_;
+  // Owns the symbols and types the AST is annotated with: lives as long as the AST.
+  std::unique_ptr<sema::Sema> sema_;
   std::vector<uint32_t> files_;
   std::optional<sema::Dialect> projectDialect_;
   std::vector<std::string> projectDefines_;
