@@ -15,10 +15,14 @@ using P = STParser;
 
 namespace {
 
-// The labelled-alternative contexts are leaf classes, so an exact typeid
-// test is equivalent to dynamic_cast and much cheaper (no hierarchy walk).
+// The labelled-alternative contexts are leaf classes, so an exact type test
+// is equivalent to dynamic_cast and much cheaper.  The generated parser and
+// the ANTLR runtime are linked statically into the same binary, so each class
+// has one type_info object and comparing addresses is exact (operator== would
+// fall back to strcmp for every mismatch).
+template <typename T> bool sameType(const std::type_info& ti) { return &ti == &typeid(T); }
 template <typename T, typename B> T* as(B* node) {
-  return node && typeid(*node) == typeid(T) ? static_cast<T*>(node) : nullptr;
+  return node && sameType<T>(typeid(*node)) ? static_cast<T*>(node) : nullptr;
 }
 
 // Positional child access for the hot paths.  The generated accessors scan
@@ -27,13 +31,13 @@ template <typename T, typename B> T* as(B* node) {
 // ParseTree, so the static_cast is valid).
 bool isTerminal(antlr4::tree::ParseTree* p) {
   const std::type_info& ti = typeid(*p);
-  return ti == typeid(antlr4::tree::TerminalNodeImpl) || ti == typeid(antlr4::tree::ErrorNodeImpl);
+  return sameType<antlr4::tree::TerminalNodeImpl>(ti) || sameType<antlr4::tree::ErrorNodeImpl>(ti);
 }
 
 antlr4::Token* tokenAt(antlr4::ParserRuleContext* c, size_t i) {
   if (i >= c->children.size()) return nullptr;
   antlr4::tree::ParseTree* p = c->children[i];
-  if (typeid(*p) != typeid(antlr4::tree::TerminalNodeImpl)) return nullptr;
+  if (!sameType<antlr4::tree::TerminalNodeImpl>(typeid(*p))) return nullptr;
   return static_cast<antlr4::tree::TerminalNode*>(p)->getSymbol();
 }
 
@@ -117,8 +121,10 @@ private:
   QualifiedName qname(P::QualifiedNameContext* c) const {
     QualifiedName q;
     if (!c) return q;
-    for (auto* id : c->IDENTIFIER()) {
-      Ident i = ident(id);
+    for (size_t k = 0; k < c->children.size(); k += 2) {   // IDENTIFIER ( '.' IDENTIFIER )*
+      antlr4::Token* t = tokenAt(c, k);
+      if (!t || t->getType() != STLexer::IDENTIFIER) continue;
+      Ident i = ident(t);
       if (!i.empty()) q.parts.push_back(std::move(i));
     }
     q.range = range(c);
@@ -476,11 +482,31 @@ private:
 
   void varDecl(P::VarDeclContext* c, VarSection section, std::vector<VarDecl*>& out, const VarBlock* block) {
     if (!c) return;
-    TypeRef* type = typeSpec(c->typeSpec());
+    // One pass over the children: names ( ',' name )* ( AT address )? ':' type ( ':=' init? )? ';'
+    std::vector<antlr4::Token*> names;
+    antlr4::Token* address = nullptr;
+    P::TypeSpecContext* typeCtx = nullptr;
+    P::InitializerContext* initCtx = nullptr;
+    bool assign = false, afterColon = false;
+    for (antlr4::tree::ParseTree* ch : c->children) {
+      if (isTerminal(ch)) {
+        antlr4::Token* t = sameType<antlr4::tree::TerminalNodeImpl>(typeid(*ch)) ? static_cast<antlr4::tree::TerminalNode*>(ch)->getSymbol() : nullptr;
+        if (!t) continue;
+        if (t->getType() == STLexer::IDENTIFIER && !afterColon) names.push_back(t);
+        else if (t->getType() == STLexer::DIRECT_ADDRESS) address = t;
+        else if (t->getType() == STLexer::COLON) afterColon = true;
+        else if (t->getType() == STLexer::ASSIGN) assign = true;
+        continue;
+      }
+      auto* r = static_cast<antlr4::ParserRuleContext*>(ch);
+      if (r->getRuleIndex() == P::RuleTypeSpec) typeCtx = static_cast<P::TypeSpecContext*>(r);
+      else if (r->getRuleIndex() == P::RuleInitializer) initCtx = static_cast<P::InitializerContext*>(r);
+    }
+    TypeRef* type = typeSpec(typeCtx);
     if (!type) return;
-    Expr* init = c->initializer() ? initializer(c->initializer()) : nullptr;
+    Expr* init = initCtx ? initializer(initCtx) : nullptr;
     std::vector<Pragma> attrs = attributesFor(c);
-    for (auto* id : c->IDENTIFIER()) {
+    for (antlr4::Token* id : names) {
       Ident name = ident(id);
       if (name.empty()) continue;
       auto* v = ctx_.make<VarDecl>();
@@ -488,12 +514,12 @@ private:
       v->name = name;
       v->type = type;
       v->init = init;
-      v->hasEmptyInit = c->ASSIGN() && !c->initializer();
+      v->hasEmptyInit = assign && !initCtx;
       v->section = section;
       v->attributes = attrs;
-      if (c->DIRECT_ADDRESS()) {
-        v->address = std::string(text(c->DIRECT_ADDRESS()));
-        v->addressRange = range(c->DIRECT_ADDRESS());
+      if (address) {
+        v->address = std::string(text(address));
+        v->addressRange = range(address);
       }
       if (block) {
         v->isConstant = block->isConstant;
@@ -617,7 +643,7 @@ private:
     };
     for (antlr4::tree::ParseTree* ch : c->children) {
       if (isTerminal(ch)) {
-        antlr4::Token* t = typeid(*ch) == typeid(antlr4::tree::TerminalNodeImpl) ? static_cast<antlr4::tree::TerminalNode*>(ch)->getSymbol() : nullptr;
+        antlr4::Token* t = sameType<antlr4::tree::TerminalNodeImpl>(typeid(*ch)) ? static_cast<antlr4::tree::TerminalNode*>(ch)->getSymbol() : nullptr;
         if (t && t->getType() == STLexer::IDENTIFIER && !conjured(t)) labels.push_back(t);
         continue;
       }

@@ -132,9 +132,7 @@ size_t FastLexer::commentEnd(size_t i) {
 }
 
 std::unique_ptr<antlr4::Token> FastLexer::make(size_t type, size_t start, size_t end, size_t channel) {
-  auto tok = std::make_unique<antlr4::CommonToken>(source_, type, channel, start, end - 1);
-  tok->setLine(line_);
-  return tok;
+  return std::make_unique<FastToken>(source_, type, channel, start, end - 1, line_);
 }
 
 std::unique_ptr<antlr4::Token> FastLexer::next() {

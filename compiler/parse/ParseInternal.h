@@ -34,6 +34,22 @@ private:
   std::string name_;
 };
 
+// A CommonToken built without asking its source for line and column (the
+// stock constructor does, through two dynamic_casts per token); the fast
+// lexer knows the line itself.
+class FastToken : public antlr4::CommonToken {
+public:
+  FastToken(std::pair<antlr4::TokenSource*, antlr4::CharStream*> source, size_t type, size_t channel, size_t start, size_t stop, size_t line)
+      : antlr4::CommonToken(type) {
+    _source = source;
+    _channel = channel;
+    _start = start;
+    _stop = stop;
+    _line = line;
+    _charPositionInLine = 0;
+  }
+};
+
 // The hand-written lexer (FastLexer.cpp): same tokens as STLexer.g4.
 class FastLexer {
 public:
@@ -64,6 +80,26 @@ private:
 class TokenEditStream : public antlr4::CommonTokenStream {
 public:
   using antlr4::CommonTokenStream::CommonTokenStream;
+
+protected:
+  // As BufferedTokenStream::fetch, without a dynamic_cast per token: every
+  // token here is a CommonToken (ours, or the EOF ListTokenSource makes).
+  size_t fetch(size_t n) override {
+    if (_fetchedEOF) return 0;
+    for (size_t i = 0; i < n; ++i) {
+      std::unique_ptr<antlr4::Token> t = _tokenSource->nextToken();
+      static_cast<antlr4::CommonToken*>(t.get())->setTokenIndex(_tokens.size());
+      bool eof = t->getType() == antlr4::Token::EOF;
+      _tokens.push_back(std::move(t));
+      if (eof) {
+        _fetchedEOF = true;
+        return i + 1;
+      }
+    }
+    return n;
+  }
+
+public:
   // All tokens, EOF last; edits must be followed by renumber().
   std::vector<std::unique_ptr<antlr4::Token>>& tokens() {
     fill();
