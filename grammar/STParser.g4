@@ -209,10 +209,11 @@ expression
     | expression op=( OR | OR_ELSE ) expression                         # binaryExpr
     ;
 
+// `name := value`, `name => var`, `NOT name => var` or a positional value.  The
+// name is parsed as an expression and checked by the AST builder, so that the
+// choice is made by the token after it (LL(1)) instead of a prediction.
 callArgument
-    : IDENTIFIER ASSIGN expression?             # namedInput
-    | NOT? IDENTIFIER OUTPUT_ASSIGN expression? # namedOutput
-    | expression                                # positionalArg
+    : expression ( op=( ASSIGN | OUTPUT_ASSIGN ) value=expression? )?
     ;
 
 // INT#5, REAL#-1.5, DWORD#16#FF, BOOL#TRUE, Color#Red, STRING#'x'

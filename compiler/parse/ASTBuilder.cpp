@@ -789,19 +789,26 @@ private:
   Argument argument(P::CallArgumentContext* c) {
     Argument a;
     a.range = range(c);
-    if (auto* n = as<P::NamedInputContext>(c)) {
-      a.kind = Argument::Input;
-      a.name = ident(tokenAt(n, 0));
-      auto* v = ruleAt<P::ExpressionContext>(n, 2, P::RuleExpression);
-      a.value = v ? expr(v) : nullptr;
-    } else if (auto* o = as<P::NamedOutputContext>(c)) {
-      a.kind = Argument::Output;
-      a.name = ident(o->IDENTIFIER());
-      a.negated = o->NOT() != nullptr;
-      a.value = o->expression() ? expr(o->expression()) : nullptr;
-    } else if (auto* p = as<P::PositionalArgContext>(c)) {
-      a.value = expr(ruleAt<P::ExpressionContext>(p, 0, P::RuleExpression));
+    auto* first = ruleAt<P::ExpressionContext>(c, 0, P::RuleExpression);
+    if (!c->op) {
+      a.value = expr(first);
+      return a;
     }
+    bool output = c->op->getType() == STLexer::OUTPUT_ASSIGN;
+    a.kind = output ? Argument::Output : Argument::Input;
+    // The part before ':=' / '=>' must be a parameter name (or NOT name for '=>').
+    P::ExpressionContext* nameCtx = first;
+    if (auto* u = as<P::UnaryExprContext>(first); u && output && u->op && u->op->getType() == STLexer::NOT) {
+      a.negated = true;
+      nameCtx = ruleAt<P::ExpressionContext>(u, 1, P::RuleExpression);
+    }
+    if (auto* n = as<P::NameExprContext>(nameCtx)) {
+      a.name = ident(tokenAt(n, 0));
+    } else if (first) {
+      diags_.error(loc(first->getStart()), std::string("expected a parameter name before '") + (output ? "=>" : ":=") + "'", "syntax")
+          .range(range(first));
+    }
+    a.value = c->value ? expr(c->value) : nullptr;
     return a;
   }
 
