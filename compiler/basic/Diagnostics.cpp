@@ -1,5 +1,7 @@
 #include "basic/Diagnostics.h"
 
+#include "basic/Text.h"
+
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
@@ -286,7 +288,6 @@ std::string renderJson(const SourceManager& sm, const std::vector<Diagnostic>& d
   return arr.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
-static char lower(char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; }
 
 // Optimal string alignment distance: a swap of two neighbours ("Fats" for
 // "Fast") counts as one edit, as people mistype.
@@ -298,9 +299,9 @@ unsigned editDistance(std::string_view a, std::string_view b, unsigned limit) {
     cur[0] = static_cast<unsigned>(i);
     unsigned rowMin = cur[0];
     for (size_t j = 1; j <= b.size(); ++j) {
-      unsigned sub = prev[j - 1] + (lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1);
+      unsigned sub = prev[j - 1] + (asciiLower(a[i - 1]) == asciiLower(b[j - 1]) ? 0 : 1);
       cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
-      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1])) cur[j] = std::min(cur[j], prev2[j - 2] + 1);
+      if (i > 1 && j > 1 && asciiLower(a[i - 1]) == asciiLower(b[j - 2]) && asciiLower(a[i - 2]) == asciiLower(b[j - 1])) cur[j] = std::min(cur[j], prev2[j - 2] + 1);
       rowMin = std::min(rowMin, cur[j]);
     }
     if (rowMin > limit) return limit + 1;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "basic/Text.h"
 #include "parse/Parser.h"
 
 namespace fs = std::filesystem;
@@ -56,17 +57,13 @@ bool Compilation::addPath(const std::string& path) {
   return true;
 }
 
-static std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 bool Compilation::check(const CompileOptions& opts) {
   using clock = std::chrono::steady_clock;
   dialect_ = opts.dialect ? *opts.dialect : projectDialect_ ? *projectDialect_ : sema::Dialect::IEC;
   ParseOptions popts;
   popts.defines = opts.defines;
-  for (const std::string& d : projectDefines_) popts.defines.insert(lower(d));
+  for (const std::string& d : projectDefines_) popts.defines.insert(asciiLower(d));
   std::vector<uint32_t> all;
   if (opts.includeStdlib)
     for (size_t i = 0; i < kStdlibSourceCount; ++i) all.push_back(sm_.addBuffer(kStdlibSources[i].name, kStdlibSources[i].text));
@@ -173,8 +170,8 @@ CompileOptions optionsFromFileHeader(const std::string& text, CompileOptions bas
   while (in >> tok) {
     if (tok == "--dialect=codesys") base.dialect = sema::Dialect::Codesys;
     else if (tok == "--dialect=iec") base.dialect = sema::Dialect::IEC;
-    else if (tok == "-D" && in >> tok) base.defines.insert(lower(tok));
-    else if (tok.rfind("-D", 0) == 0) base.defines.insert(lower(tok.substr(2)));
+    else if (tok == "-D" && in >> tok) base.defines.insert(asciiLower(tok));
+    else if (tok.rfind("-D", 0) == 0) base.defines.insert(asciiLower(tok.substr(2)));
   }
   return base;
 }

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <typeinfo>
 
+#include "basic/Text.h"
 #include "parse/ParseInternal.h"
 
 namespace stc::parse {
@@ -57,11 +58,6 @@ template <typename T, typename F> void forEachRule(antlr4::ParserRuleContext* c,
   }
 }
 
-std::string upper(std::string_view s) {
-  std::string r(s);
-  for (char& c : r) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return r;
-}
 
 int64_t daysFromCivil(int64_t y, unsigned m, unsigned d) {
   // Howard Hinnant's days-from-civil algorithm (public domain formula).
@@ -378,7 +374,7 @@ private:
     d->hasBody = false;
     for (auto* a : c->propertyAccessor()) {
       Ident which = ident(a->accessor);
-      std::string w = upper(which.name);
+      std::string w = asciiUpper(which.name);
       auto* acc = ctx_.make<PouDecl>();
       acc->range = range(a);
       acc->name.parts.push_back(which);
@@ -686,7 +682,7 @@ private:
       }
       if (!a->sr) return nullptr;
       s->opLoc = loc(a->sr);
-      std::string op = upper(text(a->sr));
+      std::string op = asciiUpper(text(a->sr));
       if (op == "S") s->op = AssignStmt::Set;
       else if (op == "R") s->op = AssignStmt::Reset;
       else {
@@ -1071,7 +1067,7 @@ private:
   void timeLiteral(antlr4::Token* t, LiteralExpr* e) {
     std::string_view s = text(t);
     size_t h = s.find('#');
-    std::string prefix = upper(s.substr(0, h));
+    std::string prefix = asciiUpper(s.substr(0, h));
     e->litKind = LiteralExpr::Time;
     e->isLong = prefix[0] == 'L';
     std::string_view body = s.substr(h + 1);
@@ -1090,7 +1086,7 @@ private:
       for (char ch : body.substr(b, i - b)) if (ch != '_') num += ch;
       size_t ub = i;
       while (i < body.size() && std::isalpha(static_cast<unsigned char>(body[i]))) ++i;
-      std::string unit = upper(body.substr(ub, i - ub));
+      std::string unit = asciiUpper(body.substr(ub, i - ub));
       // Split fused units such as "1m30s" lexed as one body: handled by the loop;
       // but "ms"/"us"/"ns" must not be read as "m"+"s".
       long double scale;

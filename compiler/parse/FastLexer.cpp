@@ -5,6 +5,7 @@
 #include <cstring>
 #include <unordered_map>
 
+#include "basic/Text.h"
 #include "parse/ParseInternal.h"
 
 namespace stc::parse {
@@ -15,7 +16,6 @@ bool isDigit(char c) { return c >= '0' && c <= '9'; }
 bool isAlpha(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
 bool isIdentStart(char c) { return isAlpha(c) || c == '_'; }
 bool isIdentChar(char c) { return isIdentStart(c) || isDigit(c); }
-char up(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
 
 const std::unordered_map<std::string, size_t>& keywords(antlr4::TokenSource* lexer = nullptr) {
   static const std::unordered_map<std::string, size_t> kw = [lexer] {
@@ -192,7 +192,7 @@ std::unique_ptr<antlr4::Token> FastLexer::next() {
     char buf[32];
     bool shortWord = len < sizeof buf;
     if (shortWord)
-      for (size_t k = 0; k < len; ++k) buf[k] = up(t_[i + k]);
+      for (size_t k = 0; k < len; ++k) buf[k] = asciiUpper(t_[i + k]);
     std::string_view w = shortWord ? std::string_view(buf, len) : std::string_view();
     if (shortWord && j < n && t_[j] == '#') {
       auto is = [&](std::initializer_list<const char*> names) {
@@ -290,10 +290,10 @@ std::unique_ptr<antlr4::Token> FastLexer::next() {
 
   // Direct addresses and partial access.
   if (c == '%') {
-    char a = up(c1);
+    char a = asciiUpper(c1);
     if (a == 'I' || a == 'Q' || a == 'M') {
       size_t j = i + 2;
-      if (j < n && std::strchr("XBWDL", up(t_[j])) && up(t_[j]) != '\0') ++j;
+      if (j < n && std::strchr("XBWDL", asciiUpper(t_[j])) && asciiUpper(t_[j]) != '\0') ++j;
       if (j < n && t_[j] == '*') return tok(STLexer::DIRECT_ADDRESS, j + 1);
       size_t k = number(j);
       if (k != std::string::npos) {

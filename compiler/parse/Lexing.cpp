@@ -2,6 +2,7 @@
 #include <cctype>
 #include <cstdio>
 
+#include "basic/Text.h"
 #include "parse/ParseInternal.h"
 
 namespace stc::parse {
@@ -143,11 +144,6 @@ void normalizeFullWidth(SourceFile& file, DiagnosticsEngine& diags) {
 
 namespace {
 
-std::string lowerStr(std::string_view s) {
-  std::string r(s);
-  for (char& c : r) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return r;
-}
 
 std::string trim(std::string_view s) {
   size_t b = 0, e = s.size();
@@ -178,7 +174,7 @@ private:
     size_t b = pos_;
     while (pos_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_' || s_[pos_] == '.')) ++pos_;
     if (asWritten) *asWritten = std::string(s_.substr(b, pos_ - b));
-    return lowerStr(s_.substr(b, pos_ - b));
+    return asciiLower(s_.substr(b, pos_ - b));
   }
   bool peekWord(const char* w) {
     size_t save = pos_;
@@ -293,7 +289,7 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
     if (type == STLexer::PRAGMA) {
       std::string_view text(t.data() + tok->getStartIndex() + 1, tok->getStopIndex() - tok->getStartIndex() - 1);
       std::string body = trim(text);
-      std::string lw = lowerStr(body);
+      std::string lw = asciiLower(body);
       SourceRange r = rangeOf(file.id, tok.get());
       auto starts = [&](const char* kw) {
         size_t n = std::char_traits<char>::length(kw);
@@ -370,13 +366,13 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
         else if (starts("warning")) diags.warning(here(tok.get()), msg, "user-pragma").range(r);
         else diags.note(here(tok.get()), msg).range(r);
       } else if (starts("define")) {
-        std::string name = lowerStr(trim(body.substr(6)));
+        std::string name = asciiLower(trim(body.substr(6)));
         size_t sp = name.find_first_of(" \t");
         if (sp != std::string::npos) name = name.substr(0, sp);
         if (name.empty()) diags.error(here(tok.get()), "expected a name after 'define'", "pragma").range(r);
         else defines.insert(name);
       } else if (starts("undefine")) {
-        defines.erase(lowerStr(trim(body.substr(8))));
+        defines.erase(asciiLower(trim(body.substr(8))));
       } else if (starts("library") || starts("flag") || starts("text") || starts("messageguid") || starts("implicit")) {
         // CODESYS export bookkeeping pragmas: no meaning for compilation.
       } else {

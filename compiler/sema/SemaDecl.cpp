@@ -3,16 +3,12 @@
 #include <algorithm>
 #include <cctype>
 
+#include "basic/Text.h"
 #include "sema/SemaInternal.h"
 
 namespace stc::sema {
 
-std::string upperCase(std::string_view s) {
-  std::string r(s);
-  for (char& c : r)
-    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');   // identifiers are ASCII
-  return r;
-}
+std::string upperCase(std::string_view s) { return asciiUpper(s); }
 
 Symbol* Scope::add(Symbol* s) {
   auto [it, inserted] = map_.emplace(upperCase(s->name), s);

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "basic/Text.h"
 #include "driver/Driver.h"
 
 using namespace stc;
@@ -34,11 +35,7 @@ CompileOptions compileOptions(const CheckArgs& a) {
   if (a.dialect == "codesys") o.dialect = sema::Dialect::Codesys;
   else if (a.dialect == "iec") o.dialect = sema::Dialect::IEC;
   o.parseThreads = a.jobs;
-  for (const std::string& d : a.defines) {
-    std::string l = d;
-    for (char& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    o.defines.insert(l);
-  }
+  for (const std::string& d : a.defines) o.defines.insert(asciiLower(d));
   return o;
 }
 

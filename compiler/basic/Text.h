@@ -1,0 +1,25 @@
+// ASCII case helpers.  ST identifiers and keywords are ASCII and
+// case-insensitive; these avoid the locale machinery of std::toupper.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace stc {
+
+inline char asciiUpper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
+inline char asciiLower(char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; }
+
+inline std::string asciiUpper(std::string_view s) {
+  std::string r(s);
+  for (char& c : r) c = asciiUpper(c);
+  return r;
+}
+
+inline std::string asciiLower(std::string_view s) {
+  std::string r(s);
+  for (char& c : r) c = asciiLower(c);
+  return r;
+}
+
+}  // namespace stc
