@@ -6,7 +6,8 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build ccache python3 git
   antlr4 libantlr4-runtime-dev            # grammar tool (4.7.2) and C++ runtime (4.9)
-  llvm-19-dev                             # code generation (issue 3)
+  llvm-19-dev llvm-19-tools               # code generation; FileCheck, llvm-dwarfdump for tests
+  libboost-context-dev                    # task fibers in the virtual controller
   libeigen3-dev                           # motion kinematics (later issues)
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev libfmt-dev nlohmann-json3-dev

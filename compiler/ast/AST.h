@@ -109,6 +109,7 @@ struct Argument {
   bool negated = false;         // NOT Q => x
   Expr* value = nullptr;        // null for empty `PT := ,` / `Q => )`
   SourceRange range;
+  sema::Symbol* param = nullptr;   // the parameter it binds to (sema)
 };
 
 struct CallExpr : Expr {
@@ -142,6 +143,9 @@ struct BinaryExpr : Expr {
   Expr* lhs = nullptr;
   Expr* rhs = nullptr;
   SourceLoc opLoc;
+  // The type both operands are converted to before the operation (sema);
+  // differs from `type` for comparisons, whose result is BOOL.
+  const sema::Type* operandType = nullptr;
 };
 
 struct ThisExpr : Expr {

@@ -22,4 +22,11 @@ inline std::string asciiLower(std::string_view s) {
   return r;
 }
 
+inline bool equalsIgnoreCase(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (asciiUpper(a[i]) != asciiUpper(b[i])) return false;
+  return true;
+}
+
 }  // namespace stc

@@ -1,4 +1,5 @@
 #include "driver/Driver.h"
+#include "sema/Model.h"
 
 #include <pthread.h>
 
@@ -138,6 +139,11 @@ bool Compilation::check(const CompileOptions& opts) {
   bool ok = sema_->run();
   stats_.semaSeconds = std::chrono::duration<double>(clock::now() - t1).count();
   return ok && !diags_.hasErrors();
+}
+
+const sema::Model* Compilation::model() const {
+  if (!sema_ || diags_.hasErrors()) return nullptr;
+  return &sema_->model();
 }
 
 void runParallelWithLargeStacks(unsigned n, const std::function<void()>& fn) {

@@ -13,6 +13,8 @@
 #include "basic/Diagnostics.h"
 #include "sema/Sema.h"
 
+namespace stc::sema { struct Model; }
+
 namespace stc {
 
 // project.toml, as far as compilation is concerned (docs/projects.md).
@@ -58,6 +60,8 @@ public:
   // Parses everything and, if parsing succeeded, runs semantic analysis.
   bool check(const CompileOptions& opts);
   const CompileStats& stats() const { return stats_; }
+  // The checked program; null unless check() succeeded.
+  const sema::Model* model() const;
   sema::Dialect dialect() const { return dialect_; }
 
 private:

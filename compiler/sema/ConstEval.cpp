@@ -157,56 +157,8 @@ std::optional<ConstValue> SemaImpl::evalConst(Expr* e, const Context& ctx) {
 }
 
 // Size in bytes with natural alignment (the layout code generation uses).
-uint64_t SemaImpl::sizeOf(const Type* t) const {
-  if (!t) return 0;
-  t = t->kind == TypeKind::Enum || t->kind == TypeKind::Subrange ? t->underlying() : t;
-  if (t->isBool()) return 1;
-  if (t->isElementary() && !t->isString()) return t->bits() / 8;
-  switch (t->kind) {
-    case TypeKind::String: return t->length + 1;
-    case TypeKind::WString: return 2 * (static_cast<uint64_t>(t->length) + 1);
-    case TypeKind::Pointer: case TypeKind::Reference: case TypeKind::Interface: return 8;
-    case TypeKind::Array: {
-      uint64_t n = sizeOf(t->element);
-      for (const Dim& d : t->dims) {
-        if (d.star) return 0;
-        n *= static_cast<uint64_t>(d.hi - d.lo + 1);
-      }
-      return n;
-    }
-    case TypeKind::Struct: case TypeKind::Union: {
-      uint64_t size = 0, align = 1;
-      std::vector<const Type*> chain;
-      for (const Type* s = t; s; s = s->base) chain.insert(chain.begin(), s);
-      for (const Type* s : chain)
-        for (const Member& m : s->members) {
-          uint64_t ms = sizeOf(m.type);
-          uint64_t a = std::min<uint64_t>(8, std::max<uint64_t>(1, alignOf(m.type)));
-          align = std::max(align, a);
-          if (t->kind == TypeKind::Union) size = std::max(size, ms);
-          else size = (size + a - 1) / a * a + ms;
-        }
-      return (size + align - 1) / align * align;
-    }
-    default: return 0;   // FB instances: layout decided by code generation
-  }
-}
-
-uint64_t SemaImpl::alignOf(const Type* t) const {
-  t = t && (t->kind == TypeKind::Enum || t->kind == TypeKind::Subrange) ? t->underlying() : t;
-  if (!t) return 1;
-  if (t->kind == TypeKind::Array) return alignOf(t->element);
-  if (t->kind == TypeKind::String) return 1;
-  if (t->kind == TypeKind::WString) return 2;
-  if (t->kind == TypeKind::Struct || t->kind == TypeKind::Union) {
-    uint64_t a = 1;
-    for (const Type* s = t; s; s = s->base)
-      for (const Member& m : s->members) a = std::max(a, alignOf(m.type));
-    return a;
-  }
-  uint64_t s = sizeOf(t);
-  return s ? std::min<uint64_t>(s, 8) : 8;
-}
+uint64_t SemaImpl::sizeOf(const Type* t) const { return layout_.sizeOf(t); }
+uint64_t SemaImpl::alignOf(const Type* t) const { return layout_.alignOf(t); }
 
 std::optional<int64_t> SemaImpl::evalInt(Expr* e, const Context& ctx, const char* what) {
   if (!e || (e->type && e->type->isError())) return std::nullopt;

@@ -16,6 +16,7 @@ struct SemaOptions {
 };
 
 class SemaImpl;
+struct Model;
 
 class Sema {
 public:
@@ -23,6 +24,8 @@ public:
   ~Sema();
   // Returns false if errors were reported.
   bool run();
+  // The checked program (after run()).
+  const Model& model() const;
 
 private:
   std::unique_ptr<SemaImpl> impl_;

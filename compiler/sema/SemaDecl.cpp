@@ -36,6 +36,7 @@ Sema::Sema(ASTContext& ctx, DiagnosticsEngine& diags, SemaOptions opts)
     : impl_(std::make_unique<SemaImpl>(ctx, diags, opts)) {}
 Sema::~Sema() = default;
 bool Sema::run() { return impl_->run(); }
+const Model& Sema::model() const { return impl_->model_; }
 
 SemaImpl::SemaImpl(ASTContext& ast, DiagnosticsEngine& diags, SemaOptions opts)
     : ast_(ast), diags_(diags), opts_(opts) {}
@@ -54,6 +55,13 @@ bool SemaImpl::run() {
   checkContainmentCycles();
   checkRecursion();
   checkUnused();
+  layout_.reset();
+  model_.types = &types_;
+  model_.layout = &layout_;
+  model_.dialect = opts_.dialect;
+  model_.pous = pous_;
+  for (auto& [g, ctx] : globalDecls_) model_.globalLists.push_back(g);
+  for (auto& [c, ctx] : configs_) model_.configurations.push_back(c);
   return diags_.errorCount() == before;
 }
 
@@ -834,6 +842,7 @@ void SemaImpl::resolveSignature(Symbol* pou) {
                                                    g->type->name + "'", "type-mismatch")
                 .range(v->type->range).note(g->declRange.begin, "global declared here", g->declRange);
           else g->var->used = true;
+          s->aliasOf = g;
         }
       }
       if (isFunction && v->section == VarSection::Stat) {

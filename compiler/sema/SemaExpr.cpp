@@ -385,7 +385,27 @@ const Type* SemaImpl::checkExpr(Expr* e, const Context& ctx, const Type* expecte
     }
     case Expr::Call: t = checkCall(cast<CallExpr>(e), ctx, expected); break;
     case Expr::Unary: t = checkUnary(cast<UnaryExpr>(e), ctx, expected); break;
-    case Expr::Binary: t = checkBinary(cast<BinaryExpr>(e), ctx, expected); break;
+    case Expr::Binary: {
+      auto* b = cast<BinaryExpr>(e);
+      t = checkBinary(b, ctx, expected);
+      b->operandType = t;
+      if (!t->isError() && b->op >= BinaryOp::Lt && b->op <= BinaryOp::Ne) {
+        // Comparisons: the common type of the operands (already checked, so
+        // commonType reports nothing here).
+        const Type* lt = valueType(b->lhs->type);
+        const Type* rt = valueType(b->rhs->type);
+        const Type* ul = lt->underlying();
+        const Type* ur = rt->underlying();
+        auto numLike = [](const Type* x) { return x->isNumeric() || x->isBitString() || x->isBool(); };
+        if (lt == rt) b->operandType = lt;
+        else if (numLike(ul) && numLike(ur)) b->operandType = commonType(ul, ur, b->lhs, b->rhs, b->opLoc, "=");
+        else if (ul->kind == TypeKind::Enum && numLike(ur)) b->operandType = commonType(ul->underlying(), ur, b->lhs, b->rhs, b->opLoc, "=");
+        else if (ur->kind == TypeKind::Enum && numLike(ul)) b->operandType = commonType(ul, ur->underlying(), b->lhs, b->rhs, b->opLoc, "=");
+        else if (ul->isDuration() || ul->isDate()) b->operandType = ul->kind == TypeKind::LTime || ur->kind == TypeKind::LTime ? types_.elementary(TypeKind::LTime) : ul;
+        else b->operandType = lt;
+      }
+      break;
+    }
     case Expr::This:
     case Expr::Super: {
       Symbol* owner = ownerOf(ctx.pou);
@@ -1056,6 +1076,7 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
       }
       Symbol* p = positionalParams[posIndex++];
       given.insert(p);
+      a.param = p;
       if (!a.value) continue;
       if (p->var->section == VarSection::InOut) checkInOut(p, a.value);
       else checkInput(p, a.value);
@@ -1083,6 +1104,7 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
       diags_.error(a.name.range.begin, "parameter '" + p->name + "' is given more than once", "call-args").range(a.name.range);
       continue;
     }
+    a.param = p;
     VarSection sec = p->var ? p->var->section : VarSection::Input;
     if (a.kind == Argument::Input) {
       if (sec == VarSection::Output) {

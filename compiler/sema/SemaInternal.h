@@ -11,6 +11,8 @@
 #include <set>
 #include <unordered_map>
 
+#include "sema/Layout.h"
+#include "sema/Model.h"
 #include "sema/Sema.h"
 #include "sema/Symbols.h"
 
@@ -140,6 +142,8 @@ public:
   const Builtin* findBuiltin(const std::string& upper) const;
 
   // ---------------------------------------------------------------- state
+  Layout layout_;
+  Model model_;
   ASTContext& ast_;
   DiagnosticsEngine& diags_;
   SemaOptions opts_;

@@ -43,6 +43,7 @@ struct Symbol {
   std::unique_ptr<Scope> scope;         // Namespace / GlobalList contents
   const Builtin* builtin = nullptr;
   Symbol* parentNamespace = nullptr;
+  Symbol* aliasOf = nullptr;            // VAR_EXTERNAL: the global variable it names
   bool resolving = false;               // cycle detection while resolving types / constants
   bool cyclic = false;                  // a constant on a reported definition cycle
 
