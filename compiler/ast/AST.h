@@ -22,6 +22,7 @@ template <typename T, typename N> bool isa(const N* n) { return n && T::classof(
 template <typename T, typename N> T* dyn_cast(N* n) { return isa<T>(n) ? static_cast<T*>(n) : nullptr; }
 template <typename T, typename N> const T* dyn_cast(const N* n) { return isa<T>(n) ? static_cast<const T*>(n) : nullptr; }
 template <typename T, typename N> T* cast(N* n) { return static_cast<T*>(n); }
+template <typename T, typename N> const T* cast(const N* n) { return static_cast<const T*>(n); }
 
 struct Node {
   virtual ~Node() = default;
@@ -119,6 +120,7 @@ struct CallExpr : Expr {
   std::vector<Argument> args;
   SourceRange parenRange;
   sema::Symbol* target = nullptr;    // resolved function / FB / method / action
+  std::vector<Expr*> orderedArgs;    // builtins: the arguments by position, after named binding (sema)
 };
 
 enum class UnaryOp { Neg, Plus, Not };

@@ -16,11 +16,6 @@ const char* const kElementary[] = {"BOOL", "SINT", "INT", "DINT", "LINT", "USINT
                                    "LDATE", "TOD", "LTOD", "DT", "LDT", "TIME_OF_DAY", "DATE_AND_TIME", "STRING",
                                    "WSTRING", "CHAR", "WCHAR"};
 
-enum Family {
-  FConvert, FToGeneric, FAbs, FRealMath, FAtan2, FExpt, FArith, FMod, FMove, FShift, FSel, FMaxMin, FLimit, FMux,
-  FCompare, FLen, FLeftRight, FMid, FConcat, FInsert, FDelete, FReplace, FFind, FFixed, FAdr, FBitAdr, FSizeOf,
-  FIsValid, FIsValidBcd, FEndian, FTrunc, FRound, FBound, FToBcd, FFromBcd,
-};
 
 }  // namespace
 
@@ -88,8 +83,13 @@ static bool bindArgs(SemaImpl& S, CallExpr* call, const std::vector<std::vector<
                                           std::to_string(out.size()) + " given", "call-args").range(call->parenRange);
     return false;
   }
+  call->orderedArgs = out;
   return true;
 }
+
+int builtinFamily(const Symbol* s) { return s && s->builtin ? s->builtin->arg0 : -1; }
+int builtinData(const Symbol* s) { return s && s->builtin ? s->builtin->arg1 : 0; }
+const char* elementaryName(int index) { return index >= 0 && index < static_cast<int>(std::size(kElementary)) ? kElementary[index] : ""; }
 
 static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, const Type* expected, const Context& ctx);
 

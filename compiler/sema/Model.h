@@ -13,6 +13,16 @@
 
 namespace stc::sema {
 
+// Builtin (generic standard) functions: their family and checker data.
+enum BuiltinFamily {
+  FConvert, FToGeneric, FAbs, FRealMath, FAtan2, FExpt, FArith, FMod, FMove, FShift, FSel, FMaxMin, FLimit, FMux,
+  FCompare, FLen, FLeftRight, FMid, FConcat, FInsert, FDelete, FReplace, FFind, FFixed, FAdr, FBitAdr, FSizeOf,
+  FIsValid, FIsValidBcd, FEndian, FTrunc, FRound, FBound, FToBcd, FFromBcd,
+};
+int builtinFamily(const Symbol* s);       // -1 if not a builtin
+int builtinData(const Symbol* s);         // FConvert: from*100+to (indices of elementaryName)
+const char* elementaryName(int index);
+
 struct Model {
   TypeContext* types = nullptr;
   const Layout* layout = nullptr;

@@ -27,6 +27,7 @@ void SemaImpl::checkBody(Symbol* pou) {
     result->type = pi.returnType;
     result->declRange = d->name.range;
     st.resultVar = result.get();
+    pi.result = result.get();
   }
   BodyState* saveBody = body_;
   Symbol* saveCaller = currentCaller_;

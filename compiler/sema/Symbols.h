@@ -25,6 +25,7 @@ struct PouInfo {
   Symbol* base = nullptr;               // EXTENDS (FB) — interfaces: see bases
   std::vector<Symbol*> interfaces;      // IMPLEMENTS; INTERFACE EXTENDS
   Symbol* owner = nullptr;              // method/action/property -> FB/program/interface
+  Symbol* result = nullptr;             // the result variable (functions, methods, GET accessors)
   bool signatureResolved = false;
   bool bodyChecked = false;
 };

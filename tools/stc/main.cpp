@@ -9,7 +9,10 @@
 #include <iostream>
 
 #include "basic/Text.h"
+#include "codegen/CodeGen.h"
 #include "driver/Driver.h"
+#include "sema/Model.h"
+#include "vm/Controller.h"
 
 using namespace stc;
 
@@ -102,6 +105,191 @@ int runCheck(const CheckArgs& a) {
   return (ok && inputsOk && !c.diags().hasErrors()) ? 0 : 1;
 }
 
+// Durations on the command line: T#1s500ms, 1s500ms, 10s, 250ms, 2m, 1h, 5us, 100ns.
+bool parseDuration(std::string text, int64_t& out) {
+  std::string t = asciiLower(text);
+  if (t.rfind("t#", 0) == 0) t = t.substr(2);
+  else if (t.rfind("time#", 0) == 0) t = t.substr(5);
+  if (t.empty()) return false;
+  int64_t total = 0;
+  size_t i = 0;
+  while (i < t.size()) {
+    size_t j = i;
+    while (j < t.size() && (std::isdigit(static_cast<unsigned char>(t[j])) || t[j] == '_')) ++j;
+    if (j == i) return false;
+    std::string digits;
+    for (size_t k = i; k < j; ++k)
+      if (t[k] != '_') digits += t[k];
+    int64_t n = std::stoll(digits);
+    size_t u = j;
+    while (u < t.size() && std::isalpha(static_cast<unsigned char>(t[u]))) ++u;
+    std::string unit = t.substr(j, u - j);
+    int64_t f = unit == "d" ? 86'400'000'000'000 : unit == "h" ? 3'600'000'000'000 : unit == "m" ? 60'000'000'000
+                : unit == "s" ? 1'000'000'000 : unit == "ms" ? 1'000'000 : unit == "us" ? 1'000 : unit == "ns" ? 1 : 0;
+    if (!f) return false;
+    total += n * f;
+    i = u;
+  }
+  out = total;
+  return true;
+}
+
+struct BuildArgs : CheckArgs {
+  std::string output;
+  std::string emit = "obj";
+  std::string opt;
+  bool noChecks = false;
+  bool debug = false;
+  std::vector<std::string> programs;
+  std::string interval;
+  // run
+  uint64_t cycles = 0;
+  std::string forDuration;
+  std::vector<std::string> watches;
+  std::vector<std::string> traces;
+  std::string traceOut;
+  bool realtime = false;
+  std::string watchdog;
+  int64_t slice = 0;
+};
+
+void printDiagnostics(Compilation& c, const CheckArgs& a) {
+  bool color = a.color == "always" || (a.color == "auto" && isatty(STDERR_FILENO));
+  for (const Diagnostic& d : c.diags().diagnostics()) std::cerr << renderText(c.sources(), d, color);
+}
+
+// Parses, checks and generates code.  Returns null (diagnostics printed) on errors.
+std::unique_ptr<codegen::CompiledModule> compile(Compilation& c, const BuildArgs& a, bool needTasks, int& status) {
+  applyDiagOptions(a, c.diags());
+  bool inputsOk = true;
+  for (const std::string& p : a.paths) inputsOk = c.addPath(p) && inputsOk;
+  bool ok = false;
+  if (inputsOk) runWithLargeStack([&] { ok = c.check(compileOptions(a)); });
+  status = 1;
+  if (!ok || !inputsOk || !c.model()) {
+    printDiagnostics(c, a);
+    return nullptr;
+  }
+  codegen::CodegenOptions o;
+  o.optLevel = a.opt.empty() ? (needTasks ? 1 : 2) : static_cast<unsigned>(a.opt[0] - '0');
+  o.checks = !a.noChecks;
+  o.debugInfo = a.debug;
+  o.programs = a.programs;
+  if (!a.interval.empty()) {
+    int64_t ns = 0;
+    if (!parseDuration(a.interval, ns) || ns <= 0) {
+      std::cerr << "stc: error: --interval: '" << a.interval << "' is not a duration (e.g. 10ms, T#1s)\n";
+      status = 2;
+      return nullptr;
+    }
+    o.defaultIntervalNs = ns;
+  }
+  std::unique_ptr<codegen::CompiledModule> m;
+  runWithLargeStack([&] { m = codegen::generate(*c.model(), c.sources(), c.diags(), o, needTasks); });
+  printDiagnostics(c, a);
+  if (!m) return nullptr;
+  status = 0;
+  return m;
+}
+
+std::string outputStem(const BuildArgs& a) {
+  std::string p = a.paths.empty() ? "out" : a.paths[0];
+  while (!p.empty() && p.back() == '/') p.pop_back();
+  ProjectConfig cfg;
+  std::string err;
+  if (loadProject(p, cfg, err) && !cfg.name.empty()) return cfg.name;
+  size_t slash = p.find_last_of('/');
+  std::string base = slash == std::string::npos ? p : p.substr(slash + 1);
+  size_t dot = base.find_last_of('.');
+  return dot == std::string::npos ? base : base.substr(0, dot);
+}
+
+int runBuild(const BuildArgs& a) {
+  Compilation c;
+  int status = 0;
+  auto m = compile(c, a, false, status);
+  if (!m) return status;
+  bool ir = a.emit == "llvm";
+  std::string out = a.output.empty() ? outputStem(a) + (ir ? ".ll" : ".o") : a.output;
+  if (!ir && out == "-") {
+    std::cerr << "stc: error: an object file cannot be written to stdout\n";
+    return 2;
+  }
+  std::string err;
+  if (!codegen::emit(*m, ir ? codegen::EmitKind::LLVM : codegen::EmitKind::Object, out, err)) {
+    std::cerr << "stc: error: " << err << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+int runRun(const BuildArgs& a) {
+  Compilation c;
+  int status = 0;
+  auto m = compile(c, a, true, status);
+  if (!m) return status;
+  vm::RunOptions ro;
+  if (a.cycles) ro.cycles = a.cycles;
+  if (!a.forDuration.empty()) {
+    int64_t ns = 0;
+    if (!parseDuration(a.forDuration, ns) || ns < 0) {
+      std::cerr << "stc: error: --for: '" << a.forDuration << "' is not a duration (e.g. 10s, 250ms, T#1s500ms)\n";
+      return 2;
+    }
+    ro.duration = ns;
+  }
+  if (!a.watchdog.empty()) {
+    int64_t ns = 0;
+    if (!parseDuration(a.watchdog, ns) || ns < 0) {
+      std::cerr << "stc: error: --watchdog: '" << a.watchdog << "' is not a duration\n";
+      return 2;
+    }
+    ro.watchdog = ns;
+  }
+  if (a.slice > 0) ro.slice = a.slice;
+  ro.realtime = a.realtime;
+  ro.stats = a.stats;
+  ro.watches = a.watches;
+  for (const std::string& t : a.traces) {
+    size_t pos = 0;
+    while (pos <= t.size()) {
+      size_t comma = t.find(',', pos);
+      std::string one = t.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+      if (!one.empty()) ro.traces.push_back(one);
+      if (comma == std::string::npos) break;
+      pos = comma + 1;
+    }
+  }
+  ro.traceOut = a.traceOut;
+  if (!ro.traces.empty() && ro.traceOut.empty()) {
+    std::cerr << "stc: error: --trace needs --trace-out FILE.csv|FILE.vcd\n";
+    return 2;
+  }
+  vm::Controller ctl(*c.model(), c.diags());
+  std::string err;
+  size_t before = c.diags().diagnostics().size();
+  if (!ctl.load(std::move(m), err)) {
+    std::cerr << "stc: error: " << err << "\n";
+    return 1;
+  }
+  int rc = ctl.run(ro, std::cout, std::cerr);
+  bool color = a.color == "always" || (a.color == "auto" && isatty(STDERR_FILENO));
+  const auto& diags = c.diags().diagnostics();
+  for (size_t i = before; i < diags.size(); ++i) std::cerr << renderText(c.sources(), diags[i], color);
+  return rc;
+}
+
+void addCompileOptions(CLI::App* cmd, BuildArgs& a) {
+  cmd->add_option("paths", a.paths, "Files (.st, .exp) or project directories")->required();
+  cmd->add_option("--dialect", a.dialect, "Language dialect (default: the project's, else iec)")->check(CLI::IsMember({"iec", "codesys"}));
+  cmd->add_option("-D,--define", a.defines, "Define NAME for {IF defined(NAME)} pragmas");
+  cmd->add_option("-O", a.opt, "Optimisation level 0-3 (-O0 .. -O3)")->check(CLI::IsMember({"0", "1", "2", "3"}));
+  cmd->add_flag("--no-checks", a.noChecks, "Drop the runtime checks (division by zero, bounds, NULL, subranges)");
+  cmd->add_flag("-g", a.debug, "Emit debug information");
+  cmd->add_option("--color", a.color, "Colour diagnostics")->check(CLI::IsMember({"auto", "always", "never"}));
+  cmd->add_flag("-w,--no-warnings", a.noWarnings, "Suppress all warnings");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -109,8 +297,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("stc ") + STC_VERSION);
   app.require_subcommand(1);
   app.footer(
-      "Commands not listed here (build, run, test) are not implemented yet; see docs/status.md.\n"
-      "Exit status: 0 success, 1 errors in the input, 2 bad command line.");
+      "Commands not listed here (test) are not implemented yet; see docs/status.md.\n"
+      "Exit status: 0 success, 1 errors in the input, 2 bad command line, 3 a runtime fault (run).");
 
   CheckArgs ca;
   CLI::App* check = app.add_subcommand("check", "Parse and analyse ST sources or project directories");
@@ -127,6 +315,27 @@ int main(int argc, char** argv) {
   check->add_flag("--stats", ca.stats, "Print sizes and front-end timing");
   check->add_option("-j,--jobs", ca.jobs, "Parse with N threads (default: one per core)");
 
+  BuildArgs ba;
+  CLI::App* build = app.add_subcommand("build", "Compile to LLVM IR or an object file");
+  addCompileOptions(build, ba);
+  build->add_option("-o,--output", ba.output, "Output file (default: <project or file name>.o|.ll; '-' = stdout for IR)");
+  build->add_option("--emit", ba.emit, "What to write")->check(CLI::IsMember({"llvm", "obj"}));
+
+  BuildArgs ra;
+  CLI::App* run = app.add_subcommand("run", "Run on the simulated controller and print watched variables");
+  addCompileOptions(run, ra);
+  auto* cyc = run->add_option("--cycles", ra.cycles, "Run N cycles of the fastest task");
+  run->add_option("--for", ra.forDuration, "Run for a simulated duration (10s, 250ms, T#1s500ms)")->excludes(cyc);
+  run->add_option("--interval", ra.interval, "Cycle time of the implicit task (default 1ms)");
+  run->add_option("--program", ra.programs, "PROGRAM(s) the implicit task runs (without a CONFIGURATION)");
+  run->add_option("--watch", ra.watches, "Print VAR after the run (MAIN.fb.Q, GVL.x, arr[3])");
+  run->add_option("--trace", ra.traces, "Record VAR,... at every tick");
+  run->add_option("--trace-out", ra.traceOut, "Trace file: .csv or .vcd");
+  run->add_flag("--realtime", ra.realtime, "Pace the simulated clock to the wall clock");
+  run->add_flag("--stats", ra.stats, "Print per-task statistics");
+  run->add_option("--watchdog", ra.watchdog, "Per-task watchdog (simulated time; 0 = off; default 1s)");
+  run->add_option("--slice", ra.slice, "Loop back-edges a task may run per slot before it yields");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -138,5 +347,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (check->parsed()) return runCheck(ca);
+  if (build->parsed()) return runBuild(ba);
+  if (run->parsed()) return runRun(ra);
   return 2;
 }

@@ -1,0 +1,456 @@
+// Calls: functions, FB instances, programs, methods, actions, properties and
+// the generic standard functions that lower to IR.
+#include <llvm/IR/Constants.h>
+#include <llvm/IR/Intrinsics.h>
+
+#include "basic/Text.h"
+#include "codegen/CGInternal.h"
+
+namespace stc::codegen {
+
+using namespace stc::ast;
+
+namespace {
+const Argument* argFor(const CallExpr* e, const Symbol* p) {
+  for (const Argument& a : e->args)
+    if (a.param == p) return &a;
+  return nullptr;
+}
+bool isValueInstance(const Expr* e) {
+  // A receiver that is an instance itself (not reached through a pointer,
+  // reference or VAR_IN_OUT) has a known dynamic type.
+  if (isa<DerefExpr>(e)) return false;
+  return true;
+}
+}  // namespace
+
+llvm::Value* CodeGen::emitCall(const CallExpr* e, Address* resultOut) {
+  Symbol* t = e->target;
+  if (!t) {
+    error(e->range, "internal: unresolved call");
+    return llvm::UndefValue::get(i32_);
+  }
+  switch (t->kind) {
+    case Symbol::BuiltinFunction:
+      return emitBuiltin(e);
+    case Symbol::Function: {
+      llvm::Value* r = callPou(e, t, nullptr, false);
+      if (resultOut && returnsIndirect(t)) *resultOut = Address{r, t->pou->returnType};
+      return r;
+    }
+    case Symbol::Program: {
+      // Calling a program from another POU runs its singleton instance.
+      llvm::Value* inst = imageAddr(programOffsets_[t]);
+      callInstance(e, t, inst);
+      return nullptr;
+    }
+    case Symbol::FunctionBlock: {
+      llvm::Value* inst = instancePtr(e->callee);
+      callInstance(e, t, inst);
+      return nullptr;
+    }
+    case Symbol::Method:
+    case Symbol::Action: {
+      llvm::Value* self = nullptr;
+      bool virt = false;
+      if (auto* m = dyn_cast<MemberExpr>(e->callee)) {
+        const Type* bt = m->base->type ? strip(m->base->type) : nullptr;
+        if (bt && bt->kind == TypeKind::Interface) {
+          error(e->range, "calls through interfaces are not supported by the code generator yet");
+          return nullptr;
+        }
+        bool viaSuper = false;
+        if (auto* d = dyn_cast<DerefExpr>(m->base)) viaSuper = isa<SuperExpr>(d->base);
+        self = instancePtr(m->base);
+        virt = t->kind == Symbol::Method && !viaSuper && !isValueInstance(m->base);
+      } else {
+        self = fs_->self;   // own method or action: implicit THIS
+        virt = t->kind == Symbol::Method;
+      }
+      llvm::Value* r = callPou(e, t, self, virt);
+      if (resultOut && t->kind == Symbol::Method && returnsIndirect(t)) *resultOut = Address{r, t->pou->returnType};
+      return r;
+    }
+    default:
+      error(e->range, "this call is not supported by the code generator yet");
+      return nullptr;
+  }
+}
+
+llvm::Value* CodeGen::callPou(const CallExpr* e, Symbol* target, llvm::Value* self, bool virtualCall) {
+  llvm::Function* f = functionFor(target);
+  std::vector<llvm::Value*> args;
+  Address result;
+  bool indirect = target->kind != Symbol::Action && returnsIndirect(target);
+  if (indirect) {
+    result = temporary(target->pou->returnType, "ret");
+    args.push_back(result.ptr);
+  }
+  if (target->kind == Symbol::Method || target->kind == Symbol::Action) args.push_back(self);
+  struct Out { Address temp; const Argument* arg; };
+  std::vector<Out> outs;
+  if (target->kind != Symbol::Action)
+    for (Symbol* p : target->pou->params) {
+      const Argument* a = argFor(e, p);
+      const VarDecl* v = p->var;
+      if (v->section == VarSection::Input) {
+        if (isAggregate(p->type)) {
+          Address tmp = temporary(p->type, p->name.c_str());
+          if (a && a->value) assign(tmp, a->value);
+          else initAt(tmp, v->init, v);
+          args.push_back(tmp.ptr);
+        } else if (a && a->value) {
+          args.push_back(emitValue(a->value, p->type));
+        } else if (v->init) {
+          args.push_back(emitValue(v->init, p->type));
+        } else {
+          Address tmp = temporary(p->type, p->name.c_str());
+          initAt(tmp, nullptr, v);
+          args.push_back(load(tmp));
+        }
+      } else if (v->section == VarSection::Output) {
+        Address tmp = temporary(p->type, p->name.c_str());
+        args.push_back(tmp.ptr);
+        if (a && a->value) outs.push_back({tmp, a});
+      } else {
+        if (!a || !a->value) {
+          error(e->range, "missing VAR_IN_OUT argument '" + p->name + "'");
+          args.push_back(llvm::ConstantPointerNull::get(ptrTy_));
+          continue;
+        }
+        args.push_back(emitAddr(a->value).ptr);
+      }
+    }
+  llvm::CallInst* call;
+  if (virtualCall && fs_ && fs_->fn) {
+    Symbol* owner = ownerOf(target);
+    int slot = owner ? vtableSlot(owner->type, slotKey(target)) : -1;
+    if (slot < 0) {
+      call = b_.CreateCall(f, args);
+    } else {
+      llvm::Value* vptr = b_.CreateAlignedLoad(ptrTy_, self, llvm::MaybeAlign(8));
+      llvm::Value* fp = b_.CreateAlignedLoad(ptrTy_, b_.CreateConstInBoundsGEP1_64(ptrTy_, vptr, static_cast<uint64_t>(slot + 2)), llvm::MaybeAlign(8));
+      call = b_.CreateCall(f->getFunctionType(), fp, args);
+      if (fs_) indirectCallers_.insert(fs_->fn);
+    }
+  } else {
+    call = b_.CreateCall(f, args);
+    if (fs_ && fs_->fn) calls_[fs_->fn].insert(f);
+  }
+  call->setAttributes(f->getAttributes());
+  for (Out& o : outs) {
+    Address dst = emitAddr(o.arg->value);
+    llvm::Value* v = load(o.temp);
+    if (o.arg->negated) v = b_.CreateNot(v);
+    if (isAggregate(o.temp.type)) {
+      b_.CreateMemCpy(dst.ptr, llvm::MaybeAlign(1), o.temp.ptr, llvm::MaybeAlign(1), std::min(sizeOf(o.temp.type), sizeOf(dst.type)));
+    } else {
+      store(dst, convert(v, o.temp.type, dst.type, o.arg->value));
+    }
+  }
+  if (indirect) return result.ptr;
+  if (call->getType()->isVoidTy()) return call;
+  return call;
+}
+
+// fb(IN := a, io := v, Q => q): inputs into the instance, in-outs bound,
+// the body called, outputs read back.  Omitted inputs keep their values.
+void CodeGen::callInstance(const CallExpr* e, Symbol* fbSym, llvm::Value* inst) {
+  const Type* fbType = fbSym->type;
+  std::vector<const Argument*> outputs;
+  for (const Argument& a : e->args) {
+    if (!a.param || !a.param->var) continue;
+    const sema::FieldLayout* f = layout_.field(fbType, a.param->var);
+    if (!f) continue;
+    llvm::Value* p = b_.CreateConstInBoundsGEP1_64(i8_, inst, f->offset);
+    switch (a.param->var->section) {
+      case VarSection::Input:
+        if (a.value) assign(Address{p, f->type}, a.value);
+        break;
+      case VarSection::InOut:
+        if (a.value) b_.CreateAlignedStore(emitAddr(a.value).ptr, p, llvm::MaybeAlign(8));
+        break;
+      case VarSection::Output:
+        if (a.value) outputs.push_back(&a);
+        break;
+      default:
+        break;
+    }
+  }
+  llvm::Function* body = functionFor(fbSym);
+  bool virt = fbSym->kind == Symbol::FunctionBlock && isa<DerefExpr>(e->callee);
+  if (virt) {
+    llvm::Value* vptr = b_.CreateAlignedLoad(ptrTy_, inst, llvm::MaybeAlign(8));
+    llvm::Value* fp = b_.CreateAlignedLoad(ptrTy_, b_.CreateConstInBoundsGEP1_64(ptrTy_, vptr, 1), llvm::MaybeAlign(8));
+    b_.CreateCall(body->getFunctionType(), fp, {inst});
+    if (fs_ && fs_->fn) indirectCallers_.insert(fs_->fn);
+  } else {
+    b_.CreateCall(body, {inst});
+    if (fs_ && fs_->fn) calls_[fs_->fn].insert(body);
+  }
+  for (const Argument* a : outputs) {
+    const sema::FieldLayout* f = layout_.field(fbType, a->param->var);
+    Address src{b_.CreateConstInBoundsGEP1_64(i8_, inst, f->offset), f->type};
+    Address dst = emitAddr(a->value);
+    if (isAggregate(f->type)) {
+      if (strip(dst.type)->isString())
+        b_.CreateCall(runtime(strip(dst.type)->kind == TypeKind::WString ? "__stc_wstr_assign" : "__stc_str_assign", llvm::Type::getVoidTy(ctx_),
+                              {ptrTy_, i64_, ptrTy_}),
+                      {dst.ptr, b_.getInt64(strip(dst.type)->length), src.ptr});
+      else
+        b_.CreateMemCpy(dst.ptr, llvm::MaybeAlign(1), src.ptr, llvm::MaybeAlign(1), std::min(sizeOf(f->type), sizeOf(dst.type)));
+      continue;
+    }
+    llvm::Value* v = load(src);
+    if (a->negated) v = b_.CreateNot(v);
+    store(dst, convert(v, f->type, dst.type, a->value));
+  }
+}
+
+// ------------------------------------------------------------------ properties
+
+static Symbol* accessorOf(const std::vector<Symbol*>& pous, Symbol* prop, PouKind kind) {
+  for (Symbol* p : pous)
+    if (p->pou && p->pou->decl && p->pou->decl->pouKind == kind && p->pou->owner == prop->pou->owner &&
+        equalsIgnoreCase(p->pou->decl->owner->name.parts.back().name, prop->name))
+      return p;
+  return nullptr;
+}
+
+llvm::Value* CodeGen::emitPropertyGet(const Expr* e, Symbol* prop) {
+  Symbol* get = accessorOf(model_.pous, prop, PouKind::PropertyGet);
+  if (!get) {
+    error(e->range, "property '" + prop->name + "' has no GET accessor");
+    return llvm::UndefValue::get(valueType(e->type));
+  }
+  llvm::Value* self = fs_ ? fs_->self : nullptr;
+  bool virt = true;
+  if (auto* m = dyn_cast<MemberExpr>(e)) {
+    self = instancePtr(m->base);
+    virt = !isValueInstance(m->base);
+  }
+  CallExpr fake;
+  fake.target = get;
+  return callPou(&fake, get, self, virt);
+}
+
+void CodeGen::emitPropertySet(const Expr* lhs, Symbol* prop, const Expr* rhs) {
+  Symbol* set = accessorOf(model_.pous, prop, PouKind::PropertySet);
+  if (!set) {
+    error(lhs->range, "property '" + prop->name + "' has no SET accessor");
+    return;
+  }
+  llvm::Value* self = fs_->self;
+  bool virt = true;
+  if (auto* m = dyn_cast<MemberExpr>(lhs)) {
+    self = instancePtr(m->base);
+    virt = !isValueInstance(m->base);
+  }
+  llvm::Function* f = functionFor(set);
+  const Type* vt = prop->pou->returnType;
+  llvm::Value* v;
+  if (isAggregate(vt)) {
+    Address tmp = temporary(vt, "value");
+    assign(tmp, rhs);
+    v = tmp.ptr;
+  } else {
+    v = emitValue(rhs, vt);
+  }
+  Symbol* owner = ownerOf(set);
+  int slot = virt && owner ? vtableSlot(owner->type, slotKey(set)) : -1;
+  if (slot >= 0) {
+    llvm::Value* vptr = b_.CreateAlignedLoad(ptrTy_, self, llvm::MaybeAlign(8));
+    llvm::Value* fp = b_.CreateAlignedLoad(ptrTy_, b_.CreateConstInBoundsGEP1_64(ptrTy_, vptr, static_cast<uint64_t>(slot + 2)), llvm::MaybeAlign(8));
+    b_.CreateCall(f->getFunctionType(), fp, {self, v});
+    indirectCallers_.insert(fs_->fn);
+  } else {
+    b_.CreateCall(f, {self, v});
+    calls_[fs_->fn].insert(f);
+  }
+}
+
+// ------------------------------------------------------------------ builtins
+
+llvm::Value* CodeGen::arg(const CallExpr* e, size_t i, const Type* to) {
+  const Expr* a = i < e->orderedArgs.size() ? e->orderedArgs[i] : (i < e->args.size() ? e->args[i].value : nullptr);
+  if (!a) return llvm::UndefValue::get(to ? valueType(to) : i32_);
+  return emitValue(a, to);
+}
+
+llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
+  Symbol* t = e->target;
+  int fam = sema::builtinFamily(t);
+  const Type* rt = e->type;
+  const std::string& name = t->name;
+  auto argExpr = [&](size_t i) -> const Expr* {
+    if (i < e->orderedArgs.size()) return e->orderedArgs[i];
+    return i < e->args.size() ? e->args[i].value : nullptr;
+  };
+  size_t n = e->orderedArgs.empty() ? e->args.size() : e->orderedArgs.size();
+  auto unsupported = [&]() -> llvm::Value* {
+    error(e->range, "standard function '" + name + "' is not implemented by the code generator yet (see docs/status.md)");
+    return llvm::UndefValue::get(rt && !isAggregate(rt) && rt->kind != TypeKind::Void ? valueType(rt) : ptrTy_);
+  };
+  switch (fam) {
+    case sema::FConvert: case sema::FToGeneric: case sema::FMove: {
+      const Expr* a = argExpr(0);
+      if (!a || isAggregate(rt) || isAggregate(a->type)) {
+        if (fam == sema::FMove && a && isAggregate(rt)) return emitValue(a, nullptr);
+        return unsupported();
+      }
+      return emitValue(a, rt);
+    }
+    case sema::FTrunc: {
+      llvm::Value* v = arg(e, 0, nullptr);
+      auto id = strip(rt)->isSignedInt() ? llvm::Intrinsic::fptosi_sat : llvm::Intrinsic::fptoui_sat;
+      return b_.CreateIntrinsic(id, {valueType(rt), v->getType()}, {v});
+    }
+    case sema::FAbs: {
+      llvm::Value* v = arg(e, 0, rt);
+      if (v->getType()->isFloatingPointTy()) return b_.CreateUnaryIntrinsic(llvm::Intrinsic::fabs, v);
+      if (!strip(rt)->isSignedInt()) return v;
+      return b_.CreateBinaryIntrinsic(llvm::Intrinsic::abs, v, b_.getFalse());
+    }
+    case sema::FRealMath: {
+      llvm::Value* v = arg(e, 0, rt);
+      std::string up = asciiUpper(name);
+      if (up == "SQRT") return b_.CreateUnaryIntrinsic(llvm::Intrinsic::sqrt, v);
+      if (up == "LN") return b_.CreateUnaryIntrinsic(llvm::Intrinsic::log, v);
+      if (up == "LOG") return b_.CreateUnaryIntrinsic(llvm::Intrinsic::log10, v);
+      if (up == "EXP") return b_.CreateUnaryIntrinsic(llvm::Intrinsic::exp, v);
+      if (up == "SIN") return b_.CreateUnaryIntrinsic(llvm::Intrinsic::sin, v);
+      if (up == "COS") return b_.CreateUnaryIntrinsic(llvm::Intrinsic::cos, v);
+      bool f32 = v->getType()->isFloatTy();
+      std::string fn = asciiLower(up) + (f32 ? "f" : "");
+      return b_.CreateCall(runtime(fn.c_str(), v->getType(), {v->getType()}), {v});
+    }
+    case sema::FAtan2: {
+      llvm::Value* y = arg(e, 0, rt);
+      llvm::Value* x = arg(e, 1, rt);
+      bool f32 = y->getType()->isFloatTy();
+      return b_.CreateCall(runtime(f32 ? "atan2f" : "atan2", y->getType(), {y->getType(), y->getType()}), {y, x});
+    }
+    case sema::FExpt: {
+      llvm::Value* x = arg(e, 0, rt);
+      const Expr* ex = argExpr(1);
+      if (ex && strip(ex->type)->isInteger()) {
+        llvm::Value* k = arg(e, 1, elementary(TypeKind::DInt));
+        return b_.CreateIntrinsic(llvm::Intrinsic::powi, {x->getType(), i32_}, {x, k});
+      }
+      return b_.CreateBinaryIntrinsic(llvm::Intrinsic::pow, x, arg(e, 1, rt));
+    }
+    case sema::FArith: case sema::FMod: {
+      std::string up = asciiUpper(name);
+      llvm::Value* acc = arg(e, 0, rt);
+      bool fp = acc->getType()->isFloatingPointTy();
+      for (size_t i = 1; i < n; ++i) {
+        llvm::Value* v = arg(e, i, rt);
+        if (up == "ADD") acc = fp ? b_.CreateFAdd(acc, v) : b_.CreateAdd(acc, v);
+        else if (up == "MUL") acc = fp ? b_.CreateFMul(acc, v) : b_.CreateMul(acc, v);
+        else if (up == "SUB") acc = fp ? b_.CreateFSub(acc, v) : b_.CreateSub(acc, v);
+        else if (fp) acc = up == "DIV" ? b_.CreateFDiv(acc, v) : b_.CreateFRem(acc, v);
+        else {
+          v = checkedDivisor(v, e);
+          bool sgn = strip(rt)->isSignedInt();
+          if (up == "DIV") acc = sgn ? b_.CreateSDiv(acc, v) : b_.CreateUDiv(acc, v);
+          else acc = sgn ? b_.CreateSRem(acc, v) : b_.CreateURem(acc, v);
+        }
+      }
+      return acc;
+    }
+    case sema::FShift: {
+      llvm::Value* v = arg(e, 0, rt);
+      llvm::Value* k = b_.CreateZExtOrTrunc(arg(e, 1, nullptr), v->getType());
+      unsigned w = v->getType()->getIntegerBitWidth();
+      llvm::Value* width = llvm::ConstantInt::get(v->getType(), w);
+      std::string up = asciiUpper(name);
+      if (up == "ROL" || up == "ROR")
+        return b_.CreateIntrinsic(up == "ROL" ? llvm::Intrinsic::fshl : llvm::Intrinsic::fshr, {v->getType()}, {v, v, b_.CreateURem(k, width)});
+      // A shift by the width or more gives 0 (an over-wide shift is poison in LLVM).
+      llvm::Value* big = b_.CreateICmpUGE(k, width);
+      llvm::Value* safeK = b_.CreateSelect(big, llvm::ConstantInt::get(v->getType(), 0), k);
+      llvm::Value* r = up == "SHL" ? b_.CreateShl(v, safeK) : b_.CreateLShr(v, safeK);
+      return b_.CreateSelect(big, llvm::ConstantInt::get(v->getType(), 0), r);
+    }
+    case sema::FSel: {
+      if (isAggregate(rt)) return unsupported();
+      llvm::Value* g = toBool(arg(e, 0, nullptr));
+      llvm::Value* a = arg(e, 1, rt);
+      llvm::Value* b = arg(e, 2, rt);
+      return b_.CreateSelect(g, b, a);
+    }
+    case sema::FMaxMin: {
+      if (isAggregate(rt)) return unsupported();
+      bool isMax = asciiUpper(name) == "MAX";
+      llvm::Value* acc = arg(e, 0, rt);
+      for (size_t i = 1; i < n; ++i) {
+        llvm::Value* v = arg(e, i, rt);
+        llvm::Value* gt = emitCompare(isMax ? BinaryOp::Gt : BinaryOp::Lt, v, acc, rt);
+        acc = b_.CreateSelect(gt, v, acc);
+      }
+      return acc;
+    }
+    case sema::FLimit: {
+      if (isAggregate(rt)) return unsupported();
+      llvm::Value* mn = arg(e, 0, rt);
+      llvm::Value* v = arg(e, 1, rt);
+      llvm::Value* mx = arg(e, 2, rt);
+      v = b_.CreateSelect(emitCompare(BinaryOp::Lt, v, mn, rt), mn, v);
+      return b_.CreateSelect(emitCompare(BinaryOp::Gt, v, mx, rt), mx, v);
+    }
+    case sema::FMux: {
+      if (isAggregate(rt)) return unsupported();
+      llvm::Value* k = b_.CreateSExtOrTrunc(arg(e, 0, nullptr), i64_);
+      // Out of range: the last input (CODESYS); evaluate all inputs (no side effects expected).
+      llvm::Value* acc = arg(e, n - 1, rt);
+      for (size_t i = n - 1; i-- > 1;) {
+        llvm::Value* v = arg(e, i, rt);
+        acc = b_.CreateSelect(b_.CreateICmpEQ(k, b_.getInt64(i - 1)), v, acc);
+      }
+      return acc;
+    }
+    case sema::FCompare: {
+      std::string up = asciiUpper(name);
+      BinaryOp op = up == "GT" ? BinaryOp::Gt : up == "GE" ? BinaryOp::Ge : up == "EQ" ? BinaryOp::Eq
+                    : up == "LE" ? BinaryOp::Le : up == "LT" ? BinaryOp::Lt : BinaryOp::Ne;
+      const Type* ot = argExpr(0)->type;
+      llvm::Value* res = nullptr;
+      for (size_t i = 0; i + 1 < n; ++i) {
+        llvm::Value* c = emitCompare(op, arg(e, i, ot), arg(e, i + 1, ot), ot);
+        res = res ? b_.CreateAnd(res, c) : c;
+      }
+      return res;
+    }
+    case sema::FAdr: {
+      const Expr* a = argExpr(0);
+      return emitAddr(a).ptr;
+    }
+    case sema::FSizeOf: {
+      const Expr* a = argExpr(0);
+      uint64_t sz = a && a->type ? sizeOf(a->type) : 0;
+      if (auto* nm = dyn_cast<NameExpr>(a); nm && nm->symbol && nm->symbol->kind == Symbol::TypeName) sz = sizeOf(nm->symbol->type);
+      return llvm::ConstantInt::get(valueType(rt), sz);
+    }
+    case sema::FLen: {
+      const Expr* a = argExpr(0);
+      bool wide = strip(a->type)->kind == TypeKind::WString;
+      llvm::Value* p = emitValue(a, nullptr);
+      llvm::Value* len = b_.CreateCall(runtime(wide ? "__stc_wstr_len" : "__stc_str_len", i64_, {ptrTy_}), {p});
+      return b_.CreateTrunc(len, valueType(rt));
+    }
+    case sema::FConcat: {
+      const Type* st = strip(rt);
+      bool wide = st->kind == TypeKind::WString;
+      Address tmp = temporary(rt, "concat");
+      b_.CreateStore(llvm::ConstantInt::get(wide ? i16_ : i8_, 0), tmp.ptr);
+      for (size_t i = 0; i < n; ++i)
+        b_.CreateCall(runtime(wide ? "__stc_wstr_append" : "__stc_str_append", llvm::Type::getVoidTy(ctx_), {ptrTy_, i64_, ptrTy_}),
+                      {tmp.ptr, b_.getInt64(st->length), arg(e, i, nullptr)});
+      return tmp.ptr;
+    }
+    default:
+      return unsupported();
+  }
+}
+
+}  // namespace stc::codegen

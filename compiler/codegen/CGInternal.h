@@ -1,0 +1,200 @@
+// State shared by the code generator's files:
+//   CodeGen.cpp   - module setup, POU functions, program entries, tasks
+//   CGImage.cpp   - the memory image and initial values (constant buffers)
+//   CGExpr.cpp    - expressions, lvalues, conversions
+//   CGStmt.cpp    - statements, loops and safepoints
+//   CGCall.cpp    - calls: functions, FB instances, methods, builtins
+//   CGChecks.cpp  - runtime checks and fault sites
+//   Emit.cpp      - optimisation pipelines and --emit
+#pragma once
+
+#include <llvm/IR/IRBuilder.h>
+#include <llvm/IR/LLVMContext.h>
+#include <llvm/IR/Module.h>
+
+#include <map>
+#include <set>
+#include <vector>
+
+#include "codegen/CodeGen.h"
+#include "codegen/CodeGenLLVM.h"
+#include "sema/Model.h"
+
+namespace stc::codegen {
+
+using sema::Symbol;
+using sema::Type;
+using sema::TypeKind;
+
+// An object in memory: its address and its ST type.
+struct Address {
+  llvm::Value* ptr = nullptr;
+  const Type* type = nullptr;
+  int bit = -1;          // a BOOL view of one bit of the byte at ptr (AT %IX1.2)
+};
+
+// `AT %IX2.3` and friends: a view into an area of the image.
+struct DirectLocation {
+  char area = 'M';       // I, Q, M
+  uint64_t byteOffset = 0;
+  int bit = -1;          // bit addresses
+  unsigned bytes = 1;
+};
+bool parseDirectAddress(const std::string& text, DirectLocation& out);
+
+// Bytes of a constant object plus the pointers inside it (vptrs, ADR()).
+struct ConstBuffer {
+  std::vector<uint8_t> bytes;
+  std::map<uint64_t, llvm::Constant*> relocs;     // offset -> ptr constant
+  void put(uint64_t off, uint64_t value, unsigned nbytes);
+  bool allZero() const;
+};
+
+// An initial value that does not fold: evaluated by code at start-up.
+struct DynamicInit {
+  uint64_t offset;
+  const Type* type;
+  const ast::Expr* expr;
+};
+
+struct FnState {
+  llvm::Function* fn = nullptr;
+  Symbol* pou = nullptr;                       // the POU being lowered (null: init code)
+  llvm::Value* self = nullptr;                 // instance pointer (FB/program bodies, methods, actions)
+  const Type* selfType = nullptr;              // its FB/program type
+  std::map<const Symbol*, Address> locals;     // symbols without a VarDecl (result, SET value)
+  std::map<const ast::VarDecl*, Address> localDecls;
+  llvm::BasicBlock* returnBlock = nullptr;
+  struct Loop { llvm::BasicBlock* cont; llvm::BasicBlock* exit; };
+  std::vector<Loop> loops;
+  std::map<std::string, llvm::BasicBlock*> labels;   // upper-case label -> block
+  llvm::IRBuilder<>* allocaBuilder = nullptr;
+  bool hasSafepoint = false;
+};
+
+class CodeGen {
+public:
+  CodeGen(const sema::Model& model, const SourceManager& sm, DiagnosticsEngine& diags, const CodegenOptions& opts,
+          llvm::LLVMContext& ctx, llvm::Module& mod, CompiledModule& out);
+  bool run(bool needTasks);
+
+  // ------------------------------------------------------------ types (CodeGen.cpp)
+  llvm::Type* valueType(const Type* t);        // SSA type: i1 for BOOL, iN, float, double, ptr; aggregates: ptr
+  llvm::Type* memType(const Type* t);          // in memory: i8 for BOOL, [n x i8] for aggregates
+  bool isAggregate(const Type* t) const;       // lives in memory only (strings, arrays, structs, FBs, interfaces)
+  uint64_t sizeOf(const Type* t) const { return layout_.sizeOf(t); }
+  uint64_t alignOf(const Type* t) const { return layout_.alignOf(t); }
+  const Type* elementary(TypeKind k) const { return model_.types->elementary(k); }
+  static const Type* strip(const Type* t);     // aliases, subranges, enums -> underlying; references kept
+
+  // ------------------------------------------------------------ POUs (CodeGen.cpp)
+  llvm::Function* functionFor(Symbol* pou);    // declares on demand
+  llvm::FunctionType* signatureOf(Symbol* pou);
+  bool returnsIndirect(Symbol* pou);           // aggregate result through a leading pointer
+  void lowerPou(Symbol* pou);
+  bool isNative(const Symbol* pou) const;
+  Symbol* ownerOf(Symbol* pou) const;          // FB/program of a method/action/accessor
+  const std::vector<Symbol*>& paramsOf(Symbol* pou);   // inherited params first (FB)
+
+  // ------------------------------------------------------------ image (CGImage.cpp)
+  void layoutImage();
+  void buildImage();
+  void initObject(ConstBuffer& buf, uint64_t off, const Type* t, const ast::Expr* init, std::vector<DynamicInit>& dyn,
+                  const ast::VarDecl* decl = nullptr);
+  void defaultObject(ConstBuffer& buf, uint64_t off, const Type* t, std::vector<DynamicInit>& dyn);
+  bool foldScalar(const ast::Expr* e, const Type* to, llvm::Constant*& out);
+  void writeScalar(ConstBuffer& buf, uint64_t off, const Type* t, llvm::Constant* c);
+  llvm::Constant* bufferConstant(const ConstBuffer& buf, llvm::Type** tyOut = nullptr);
+  // Initialises memory at run time: constant part copied, the rest computed.
+  void initAt(Address dst, const ast::Expr* init, const ast::VarDecl* decl = nullptr);
+  llvm::Value* imageAddr(uint64_t off);
+  std::string literalBytes(const ast::LiteralExpr* lit, bool wide) const;
+  llvm::Constant* vtableFor(const Type* fb);
+
+  // ------------------------------------------------------------ expressions (CGExpr.cpp)
+  llvm::Value* emitValue(const ast::Expr* e, const Type* to);   // converted to `to` (null: its own type)
+  llvm::Value* emitRaw(const ast::Expr* e);                      // in its own type; aggregates: address
+  Address emitAddr(const ast::Expr* e);                          // lvalue
+  Address varAddr(const Symbol* s, const ast::Expr* at);
+  llvm::Value* load(Address a);
+  void store(Address a, llvm::Value* v);                          // v in a.type's value type
+  void assign(Address dst, const ast::Expr* src);                  // with conversion, strings, aggregates
+  llvm::Value* convert(llvm::Value* v, const Type* from, const Type* to, const ast::Expr* at);
+  llvm::Value* toBool(llvm::Value* v);
+  llvm::Value* emitBinary(const ast::BinaryExpr* e);
+  llvm::Value* emitCompare(ast::BinaryOp op, llvm::Value* l, llvm::Value* r, const Type* t);
+  llvm::Value* emitStringLiteral(const ast::LiteralExpr* lit, const Type* t);
+  llvm::Value* constantValue(const ast::LiteralExpr* lit, const Type* t);
+  Address temporary(const Type* t, const char* name = "tmp");
+  llvm::Value* bitRead(llvm::Value* word, unsigned bit, unsigned width, llvm::Type* resultTy);
+  void storeBits(const ast::MemberExpr* m, llvm::Value* v);
+  Address directAddress(const std::string& text, const Type* t);
+  llvm::Value* instancePtr(const ast::Expr* e);                  // FB/program instance of an expression
+
+  // ------------------------------------------------------------ statements (CGStmt.cpp)
+  void emitStmts(const std::vector<ast::Stmt*>& stmts);
+  void emitStmt(const ast::Stmt* s);
+  void emitFor(const ast::ForStmt* s);
+  void emitCase(const ast::CaseStmt* s);
+  void safepoint(const ast::Node* at);
+  bool blockOpen() const;
+  llvm::BasicBlock* newBlock(const char* name);
+
+  // ------------------------------------------------------------ calls (CGCall.cpp)
+  llvm::Value* emitCall(const ast::CallExpr* e, Address* resultOut = nullptr);
+  llvm::Value* callPou(const ast::CallExpr* e, Symbol* target, llvm::Value* self, bool virtualCall);
+  void callInstance(const ast::CallExpr* e, Symbol* fbType, llvm::Value* inst);
+  llvm::Value* emitBuiltin(const ast::CallExpr* e);
+  llvm::Value* arg(const ast::CallExpr* e, size_t i, const Type* to);
+  llvm::Value* emitPropertyGet(const ast::Expr* e, Symbol* prop);
+  void emitPropertySet(const ast::Expr* lhs, Symbol* prop, const ast::Expr* rhs);
+
+  // ------------------------------------------------------------ checks (CGChecks.cpp)
+  uint32_t site(const ast::Node* n, std::string detail = "");
+  uint32_t site(SourceRange r, std::string detail = "");
+  void check(llvm::Value* ok, FaultKind kind, uint32_t site);
+  void checkIndex(llvm::Value* idx, int64_t lo, int64_t hi, uint32_t site);
+  llvm::Value* checkedDivisor(llvm::Value* d, const ast::Node* at);
+  llvm::Value* nullChecked(llvm::Value* p, FaultKind kind, const ast::Node* at);
+
+  // ------------------------------------------------------------ runtime ABI
+  llvm::FunctionCallee runtime(const char* name, llvm::Type* ret, llvm::ArrayRef<llvm::Type*> params, bool noreturn = false);
+
+  // ------------------------------------------------------------ state
+  const sema::Model& model_;
+  const sema::Layout& layout_;
+  const SourceManager& sm_;
+  DiagnosticsEngine& diags_;
+  const CodegenOptions& opts_;
+  llvm::LLVMContext& ctx_;
+  llvm::Module& mod_;
+  CompiledModule& out_;
+  llvm::IRBuilder<> b_;
+  llvm::PointerType* ptrTy_;
+  llvm::IntegerType *i1_, *i8_, *i16_, *i32_, *i64_;
+  llvm::GlobalVariable* image_ = nullptr;
+  llvm::GlobalVariable* budget_ = nullptr;
+  FnState* fs_ = nullptr;
+  std::map<const ast::VarDecl*, uint64_t> imageOffsets_;   // globals, VAR_STAT, program instances' decls
+  std::map<const Symbol*, uint64_t> programOffsets_;       // PROGRAM type -> its singleton instance
+  std::map<const ast::VarDecl*, Symbol*> varOwner_;
+  std::map<const ast::VarDecl*, DirectLocation> atViews_;   // AT %I/%Q/%M variables
+  std::map<const Symbol*, std::vector<Symbol*>> methodsOf_;  // FB -> its methods and accessors
+  std::map<const Type*, std::vector<std::pair<std::string, Symbol*>>> vtableSlots_;
+  const std::vector<std::pair<std::string, Symbol*>>& vtableSlots(const Type* fb);
+  int vtableSlot(const Type* fb, const std::string& key);
+  static std::string slotKey(const Symbol* method);
+  llvm::Function* foldFn_ = nullptr;
+  std::map<const Symbol*, llvm::Function*> functions_;
+  std::map<const Symbol*, std::vector<Symbol*>> params_;
+  std::map<const Type*, llvm::GlobalVariable*> vtables_;
+  std::map<std::string, llvm::Constant*> stringLits_;
+  std::vector<DynamicInit> imageDynamic_;
+  std::map<llvm::Function*, std::set<llvm::Function*>> calls_;   // direct call graph (may-suspend analysis)
+  std::set<llvm::Function*> indirectCallers_, safepointFns_;
+  uint64_t imageSize_ = 0;
+  unsigned errors_ = 0;
+  void error(SourceRange r, const std::string& msg);
+};
+
+}  // namespace stc::codegen

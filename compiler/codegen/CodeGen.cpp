@@ -1,0 +1,457 @@
+#include <llvm/IR/Verifier.h>
+#include <llvm/Support/raw_ostream.h>
+
+#include "basic/Text.h"
+#include "codegen/CGInternal.h"
+
+namespace stc::codegen {
+
+using namespace stc::ast;
+
+const char* faultCode(FaultKind k) {
+  switch (k) {
+    case FaultKind::DivisionByZero: return "fault-division-by-zero";
+    case FaultKind::Index: return "fault-index";
+    case FaultKind::Subrange: return "fault-subrange";
+    case FaultKind::NullPointer: return "fault-null-pointer";
+    case FaultKind::NullReference: return "fault-null-reference";
+    case FaultKind::NullInterface: return "fault-null-interface";
+    case FaultKind::UnboundInOut: return "fault-unbound-in-out";
+    case FaultKind::ForStepZero: return "fault-for-step-zero";
+    case FaultKind::StringIndex: return "fault-string-index";
+  }
+  return "fault";
+}
+
+const ImageRoot* ImageMap::find(const std::string& upperPath) const {
+  for (const ImageRoot& r : roots)
+    if (asciiUpper(r.path) == upperPath) return &r;
+  return nullptr;
+}
+
+CompiledModule::CompiledModule(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+CompiledModule::~CompiledModule() = default;
+
+CodeGen::CodeGen(const sema::Model& model, const SourceManager& sm, DiagnosticsEngine& diags, const CodegenOptions& opts,
+                 llvm::LLVMContext& ctx, llvm::Module& mod, CompiledModule& out)
+    : model_(model), layout_(*model.layout), sm_(sm), diags_(diags), opts_(opts), ctx_(ctx), mod_(mod), out_(out), b_(ctx) {
+  ptrTy_ = llvm::PointerType::get(ctx, 0);
+  i1_ = llvm::Type::getInt1Ty(ctx);
+  i8_ = llvm::Type::getInt8Ty(ctx);
+  i16_ = llvm::Type::getInt16Ty(ctx);
+  i32_ = llvm::Type::getInt32Ty(ctx);
+  i64_ = llvm::Type::getInt64Ty(ctx);
+  out_.sites.emplace_back();   // site 0: unknown
+}
+
+void CodeGen::error(SourceRange r, const std::string& msg) {
+  ++errors_;
+  diags_.error(r.begin, msg, "codegen").range(r);
+}
+
+// ------------------------------------------------------------------ types
+
+const Type* CodeGen::strip(const Type* t) {
+  while (t && (t->kind == TypeKind::Enum || t->kind == TypeKind::Subrange) && t->element) t = t->element;
+  return t;
+}
+
+bool CodeGen::isAggregate(const Type* t) const {
+  switch (strip(t)->kind) {
+    case TypeKind::String: case TypeKind::WString: case TypeKind::Array: case TypeKind::Struct: case TypeKind::Union:
+    case TypeKind::FunctionBlock: case TypeKind::Program: case TypeKind::Interface:
+      return true;
+    default:
+      return false;
+  }
+}
+
+llvm::Type* CodeGen::valueType(const Type* t) {
+  t = strip(t);
+  switch (t->kind) {
+    case TypeKind::Bool: case TypeKind::Bit: return i1_;
+    case TypeKind::Real: return llvm::Type::getFloatTy(ctx_);
+    case TypeKind::LReal: return llvm::Type::getDoubleTy(ctx_);
+    case TypeKind::Pointer: case TypeKind::Reference: case TypeKind::Null: return ptrTy_;
+    case TypeKind::Void: return llvm::Type::getVoidTy(ctx_);
+    default:
+      if (t->isElementary()) return llvm::IntegerType::get(ctx_, t->bits());
+      return ptrTy_;   // aggregates are handled by address
+  }
+}
+
+llvm::Type* CodeGen::memType(const Type* t) {
+  const Type* s = strip(t);
+  if (s->isBool()) return i8_;
+  if (isAggregate(s)) return llvm::ArrayType::get(i8_, sizeOf(s));
+  return valueType(s);
+}
+
+// ------------------------------------------------------------------ POUs
+
+bool CodeGen::isNative(const Symbol* pou) const {
+  const PouDecl* d = pou && pou->pou ? pou->pou->decl : nullptr;
+  if (!d) return false;
+  for (const Pragma& p : d->attributes)
+    if (equalsIgnoreCase(p.name, "native")) return true;
+  // Accessors and methods of a native FB are native too.
+  if (pou->pou->owner && pou->pou->owner != pou) return isNative(pou->pou->owner);
+  return false;
+}
+
+Symbol* CodeGen::ownerOf(Symbol* pou) const {
+  if (!pou || !pou->pou) return nullptr;
+  if (pou->kind == Symbol::FunctionBlock || pou->kind == Symbol::Program) return pou;
+  return pou->pou->owner;
+}
+
+const std::vector<Symbol*>& CodeGen::paramsOf(Symbol* pou) {
+  auto it = params_.find(pou);
+  if (it != params_.end()) return it->second;
+  std::vector<Symbol*> chain, params;
+  for (Symbol* p = pou; p && p->pou && chain.size() < 64; p = p->kind == Symbol::FunctionBlock ? p->pou->base : nullptr) chain.push_back(p);
+  for (auto c = chain.rbegin(); c != chain.rend(); ++c)
+    for (Symbol* p : (*c)->pou->params) params.push_back(p);
+  return params_[pou] = params;
+}
+
+bool CodeGen::returnsIndirect(Symbol* pou) {
+  const Type* r = pou->pou->returnType;
+  return r && r->kind != TypeKind::Void && isAggregate(r);
+}
+
+static bool hasThis(const Symbol* pou) {
+  return pou->kind == Symbol::Method || pou->kind == Symbol::Action || pou->kind == Symbol::FunctionBlock || pou->kind == Symbol::Program;
+}
+
+// The setter's value: the variable of the property's own name without a declaration.
+static Symbol* setterValue(Symbol* pou) {
+  if (!pou->pou || !pou->pou->decl || pou->pou->decl->pouKind != PouKind::PropertySet) return nullptr;
+  for (Symbol* s : pou->pou->vars->symbols())
+    if (s->kind == Symbol::Variable && !s->var) return s;
+  return nullptr;
+}
+
+llvm::FunctionType* CodeGen::signatureOf(Symbol* pou) {
+  std::vector<llvm::Type*> params;
+  llvm::Type* ret = llvm::Type::getVoidTy(ctx_);
+  if (pou->kind == Symbol::FunctionBlock || pou->kind == Symbol::Program || pou->kind == Symbol::Action)
+    return llvm::FunctionType::get(ret, {ptrTy_}, false);
+  if (returnsIndirect(pou)) params.push_back(ptrTy_);
+  else if (pou->pou->returnType && pou->pou->returnType->kind != TypeKind::Void) ret = valueType(pou->pou->returnType);
+  if (hasThis(pou)) params.push_back(ptrTy_);
+  for (Symbol* p : pou->pou->params) {
+    VarSection sec = p->var->section;
+    if (sec == VarSection::Input && !isAggregate(p->type)) params.push_back(valueType(p->type));
+    else params.push_back(ptrTy_);
+  }
+  if (Symbol* v = setterValue(pou)) params.push_back(isAggregate(v->type) ? ptrTy_ : valueType(v->type));
+  return llvm::FunctionType::get(ret, params, false);
+}
+
+static std::string qualifiedName(const Symbol* s) {
+  std::string n = s->name;
+  for (const Symbol* ns = s->parentNamespace; ns; ns = ns->parentNamespace) n = ns->name + "." + n;
+  return n;
+}
+
+llvm::Function* CodeGen::functionFor(Symbol* pou) {
+  auto it = functions_.find(pou);
+  if (it != functions_.end()) return it->second;
+  std::string name = "st.";
+  if (Symbol* owner = pou->pou->owner) name += qualifiedName(owner) + ".";
+  const PouDecl* d = pou->pou->decl;
+  if (d && d->pouKind == PouKind::PropertyGet) name += "__get_" + d->owner->name.parts.back().name;
+  else if (d && d->pouKind == PouKind::PropertySet) name += "__set_" + d->owner->name.parts.back().name;
+  else name += pou->pou->owner ? pou->name : qualifiedName(pou);
+  bool native = isNative(pou);
+  bool hasBody = d && d->hasBody && !d->isAbstract;
+  auto linkage = (native || !hasBody) ? llvm::Function::ExternalLinkage : llvm::Function::InternalLinkage;
+  if (native) name = "native." + name.substr(3);
+  llvm::Function* f = llvm::Function::Create(signatureOf(pou), linkage, name, mod_);
+  // Small integer parameters follow the System V convention (what C++ natives expect).
+  unsigned i = 0;
+  for (llvm::Argument& a : f->args()) {
+    (void)a;
+    ++i;
+  }
+  auto extAttr = [&](const Type* t) {
+    const Type* s = strip(t);
+    if (!s->isElementary() || s->bits() >= 32 || s->isReal()) return llvm::Attribute::None;
+    return s->isSignedInt() ? llvm::Attribute::SExt : llvm::Attribute::ZExt;
+  };
+  unsigned idx = 0;
+  if (!(pou->kind == Symbol::FunctionBlock || pou->kind == Symbol::Program || pou->kind == Symbol::Action)) {
+    if (returnsIndirect(pou)) ++idx;
+    else if (pou->pou->returnType && pou->pou->returnType->kind != TypeKind::Void)
+      if (auto a = extAttr(pou->pou->returnType); a != llvm::Attribute::None) f->addRetAttr(a);
+    if (hasThis(pou)) ++idx;
+    for (Symbol* p : pou->pou->params) {
+      if (p->var->section == VarSection::Input && !isAggregate(p->type))
+        if (auto a = extAttr(p->type); a != llvm::Attribute::None) f->addParamAttr(idx, a);
+      ++idx;
+    }
+  }
+  if (native) out_.natives.push_back(name);
+  functions_[pou] = f;
+  return f;
+}
+
+void CodeGen::lowerPou(Symbol* pou) {
+  const PouDecl* d = pou->pou->decl;
+  if (!d || isNative(pou) || !d->hasBody || d->isAbstract) return;
+  llvm::Function* f = functionFor(pou);
+  FnState st;
+  st.fn = f;
+  st.pou = pou;
+  fs_ = &st;
+  // Allocas go to their own entry block, which falls through to the code.
+  auto* entry = llvm::BasicBlock::Create(ctx_, "entry", f);
+  auto* code = llvm::BasicBlock::Create(ctx_, "code", f);
+  llvm::IRBuilder<> allocas(entry);
+  allocas.CreateBr(code);
+  allocas.SetInsertPoint(entry->getTerminator());
+  st.allocaBuilder = &allocas;
+  b_.SetInsertPoint(code);
+  auto argIt = f->arg_begin();
+  bool isBody = pou->kind == Symbol::FunctionBlock || pou->kind == Symbol::Program || pou->kind == Symbol::Action;
+  llvm::Value* sret = nullptr;
+  if (!isBody && returnsIndirect(pou)) sret = &*argIt++;
+  if (hasThis(pou)) {
+    st.self = &*argIt++;
+    st.self->setName("this");
+    Symbol* owner = ownerOf(pou);
+    st.selfType = owner ? owner->type : nullptr;
+  }
+  // Parameters of functions and methods.
+  std::vector<std::pair<Address, const VarDecl*>> toInit;
+  if (!isBody) {
+    for (Symbol* p : pou->pou->params) {
+      llvm::Value* a = &*argIt++;
+      a->setName(p->name);
+      const VarDecl* v = p->var;
+      if (v->section == VarSection::Input) {
+        Address slot = temporary(p->type, p->name.c_str());
+        if (isAggregate(p->type)) {
+          // Inputs are copies: the callee may write them.
+          b_.CreateMemCpy(slot.ptr, llvm::MaybeAlign(alignOf(p->type)), a, llvm::MaybeAlign(1), sizeOf(p->type));
+        } else {
+          store(slot, a);
+        }
+        st.localDecls[v] = slot;
+      } else if (v->section == VarSection::Output) {
+        st.localDecls[v] = Address{a, p->type};
+        toInit.push_back({Address{a, p->type}, v});
+      } else {
+        st.localDecls[v] = Address{a, p->type};   // VAR_IN_OUT: the caller's variable
+      }
+    }
+    if (Symbol* v = setterValue(pou)) {
+      llvm::Value* a = &*argIt++;
+      Address slot = temporary(v->type, "value");
+      if (isAggregate(v->type)) b_.CreateMemCpy(slot.ptr, llvm::MaybeAlign(alignOf(v->type)), a, llvm::MaybeAlign(1), sizeOf(v->type));
+      else store(slot, a);
+      st.locals[v] = slot;
+    }
+  }
+  // Locals: function/method variables, VAR_TEMP everywhere.  Initialised on every call.
+  for (const VarBlock& vb : d->varBlocks)
+    for (const VarDecl* v : vb.vars) {
+      bool local = v->section == VarSection::Temp ||
+                   (!isBody && (v->section == VarSection::Var));
+      if (!local || !v->resolvedType) continue;
+      Address slot = temporary(v->resolvedType, v->name.name.c_str());
+      st.localDecls[v] = slot;
+      toInit.push_back({slot, v});
+    }
+  // The result variable.
+  Address result;
+  if (!isBody && pou->pou->result) {
+    const Type* rt = pou->pou->result->type;
+    result = sret ? Address{sret, rt} : temporary(rt, "result");
+    st.locals[pou->pou->result] = result;
+    initAt(result, nullptr);
+  }
+  for (auto& [addr, v] : toInit) initAt(addr, v->init, v);
+  st.returnBlock = llvm::BasicBlock::Create(ctx_, "return", f);
+  emitStmts(d->body);
+  if (blockOpen()) b_.CreateBr(st.returnBlock);
+  b_.SetInsertPoint(st.returnBlock);
+  if (result.ptr && !sret) b_.CreateRet(load(result));
+  else b_.CreateRetVoid();
+  if (st.hasSafepoint) safepointFns_.insert(f);
+  fs_ = nullptr;
+}
+
+// ------------------------------------------------------------------ tasks
+
+namespace {
+int64_t parseDurationNs(const Expr* e) {
+  if (auto* l = dyn_cast<LiteralExpr>(e)) return static_cast<int64_t>(l->intValue);
+  return -1;
+}
+}  // namespace
+
+bool CodeGen::run(bool needTasks) {
+  for (Symbol* pou : model_.pous)
+    if (pou->pou && pou->pou->decl)
+      for (const VarBlock& vb : pou->pou->decl->varBlocks)
+        for (const VarDecl* v : vb.vars) varOwner_[v] = pou;
+  budget_ = new llvm::GlobalVariable(mod_, i64_, false, llvm::GlobalValue::ExternalLinkage, nullptr, "__stc_budget");
+  layoutImage();
+  // Every POU body, then the image (its initialiser may refer to vtables and functions).
+  for (Symbol* pou : model_.pous) lowerPou(pou);
+  if (errors_) return false;
+  buildImage();
+
+  // Program entries: one function per program instance.
+  auto programEntry = [&](const std::string& instName, Symbol* progType, uint64_t off) {
+    std::string name = "__stc_prog." + instName;
+    if (auto* existing = mod_.getFunction(name)) return std::string(existing->getName());
+    auto* f = llvm::Function::Create(llvm::FunctionType::get(llvm::Type::getVoidTy(ctx_), false), llvm::Function::ExternalLinkage, name, mod_);
+    auto* bb = llvm::BasicBlock::Create(ctx_, "entry", f);
+    llvm::IRBuilder<> ib(bb);
+    llvm::Function* body = functionFor(progType);
+    ib.CreateCall(body, {ib.CreateConstInBoundsGEP1_64(i8_, image_, off)});
+    ib.CreateRetVoid();
+    calls_[f].insert(body);
+    return name;
+  };
+  // May a function reach a safepoint?  (Closure over the direct call graph.)
+  std::map<llvm::Function*, bool> memo;
+  std::function<bool(llvm::Function*)> maySuspend = [&](llvm::Function* f) -> bool {
+    auto it = memo.find(f);
+    if (it != memo.end()) return it->second;
+    memo[f] = false;
+    bool r = safepointFns_.count(f) || indirectCallers_.count(f) || (f->isDeclaration() && f->getName().starts_with("native."));
+    for (llvm::Function* c : calls_[f]) r = r || maySuspend(c);
+    return memo[f] = r;
+  };
+
+  bool haveConfig = false;
+  for (ConfigurationDecl* c : model_.configurations) {
+    haveConfig = true;
+    for (ResourceDecl& r : c->resources) {
+      std::map<std::string, size_t> taskIndex;
+      for (TaskDecl& t : r.tasks) {
+        TaskPlan plan;
+        plan.name = t.name.name;
+        plan.kind = TaskPlan::Kind::Freewheeling;
+        for (auto& in : t.inits) {
+          std::string key = asciiUpper(in.name.name);
+          if (key == "INTERVAL") {
+            plan.kind = TaskPlan::Kind::Cyclic;
+            plan.intervalNs = parseDurationNs(in.value);
+            if (plan.intervalNs <= 0) error(in.value->range, "task INTERVAL must be a positive TIME literal");
+          } else if (key == "PRIORITY") {
+            if (auto* l = dyn_cast<LiteralExpr>(in.value)) plan.priority = static_cast<int>(l->intValue);
+          } else if (key == "SINGLE") {
+            plan.kind = TaskPlan::Kind::Event;
+            Address a;
+            if (in.value) {
+              auto saved = fs_;
+              fs_ = nullptr;
+              // The trigger must be a global BOOL: resolve it to its image offset.
+              if (auto* n = dyn_cast<NameExpr>(in.value); n && n->symbol && n->symbol->var && imageOffsets_.count(n->symbol->var)) {
+                plan.singleOffset = imageOffsets_[n->symbol->var];
+                plan.singlePath = n->ident.name;
+              } else {
+                error(in.value->range, "task SINGLE must name a global BOOL variable");
+              }
+              fs_ = saved;
+            }
+          }
+        }
+        taskIndex[asciiUpper(t.name.name)] = out_.tasks.size();
+        out_.tasks.push_back(plan);
+      }
+      for (ProgramConfig& pc : r.programs) {
+        Symbol* type = nullptr;
+        for (Symbol* p : model_.pous)
+          if (p->kind == Symbol::Program && equalsIgnoreCase(p->name, pc.type.parts.back().name)) type = p;
+        auto root = out_.image.find(asciiUpper(pc.name.name));
+        if (!type || !root) continue;
+        std::string entry = programEntry(pc.name.name, type, root->offset);
+        auto ti = taskIndex.find(asciiUpper(pc.task.name));
+        if (pc.task.empty() || ti == taskIndex.end()) {
+          // A program without a task runs in a default cyclic task.
+          TaskPlan plan;
+          plan.name = pc.name.name;
+          plan.intervalNs = opts_.defaultIntervalNs;
+          plan.priority = 31;
+          taskIndex[asciiUpper(pc.task.name)] = out_.tasks.size();
+          out_.tasks.push_back(plan);
+          ti = taskIndex.find(asciiUpper(pc.task.name));
+        }
+        out_.tasks[ti->second].entries.push_back(entry);
+        out_.tasks[ti->second].programNames.push_back(pc.name.name);
+      }
+    }
+  }
+  if (!haveConfig && needTasks) {
+    std::vector<Symbol*> programs, chosen;
+    for (Symbol* p : model_.pous)
+      if (p->kind == Symbol::Program) programs.push_back(p);
+    if (!opts_.programs.empty()) {
+      for (const std::string& name : opts_.programs) {
+        Symbol* found = nullptr;
+        for (Symbol* p : programs)
+          if (equalsIgnoreCase(p->name, name)) found = p;
+        if (!found) {
+          std::string list;
+          for (Symbol* p : programs) list += (list.empty() ? "" : ", ") + p->name;
+          diags_.error(SourceLoc{}, "no PROGRAM named '" + name + "'" + (list.empty() ? "" : "; the programs are: " + list), "no-program");
+          return false;
+        }
+        chosen.push_back(found);
+      }
+    } else if (programs.size() == 1) {
+      chosen.push_back(programs[0]);
+    } else {
+      for (Symbol* p : programs)
+        if (equalsIgnoreCase(p->name, "MAIN") || equalsIgnoreCase(p->name, "PLC_PRG")) chosen.push_back(p);
+      if (chosen.size() != 1) {
+        std::string list;
+        for (Symbol* p : programs) list += (list.empty() ? "" : ", ") + p->name;
+        diags_.error(SourceLoc{}, programs.empty() ? std::string("there is no PROGRAM to run")
+                                                   : "several programs and no CONFIGURATION: choose with --program (" + list + ")",
+                     "no-program");
+        return false;
+      }
+    }
+    TaskPlan plan;
+    plan.name = "Main";
+    plan.intervalNs = opts_.defaultIntervalNs;
+    for (Symbol* p : chosen) {
+      plan.entries.push_back(programEntry(p->name, p, programOffsets_[p]));
+      plan.programNames.push_back(p->name);
+    }
+    out_.tasks.push_back(plan);
+  }
+  for (TaskPlan& t : out_.tasks)
+    for (const std::string& e : t.entries) t.mayBlock = t.mayBlock || maySuspend(mod_.getFunction(e));
+  if (errors_) return false;
+  std::string err;
+  llvm::raw_string_ostream os(err);
+  if (getenv("STC_DUMP_IR")) mod_.print(llvm::errs(), nullptr);
+  if (llvm::verifyModule(mod_, &os)) {
+    diags_.error(SourceLoc{}, "internal compiler error: invalid LLVM IR: " + os.str().substr(0, 2000), "codegen");
+    return false;
+  }
+  return true;
+}
+
+std::unique_ptr<CompiledModule> generate(const sema::Model& model, const SourceManager& sm, DiagnosticsEngine& diags,
+                                         const CodegenOptions& opts, bool needTasks) {
+  auto impl = std::make_unique<CompiledModule::Impl>();
+  impl->context = std::make_unique<llvm::LLVMContext>();
+  impl->module = std::make_unique<llvm::Module>("stc", *impl->context);
+  impl->optLevel = opts.optLevel;
+  auto out = std::make_unique<CompiledModule>(std::move(impl));
+  CodeGen cg(model, sm, diags, opts, *out->impl().context, *out->impl().module, *out);
+  if (!cg.run(needTasks)) return nullptr;
+  optimize(*out->impl().module, opts.optLevel);
+  return out;
+}
+
+}  // namespace stc::codegen

@@ -1,0 +1,95 @@
+// Code generation: the checked program (sema::Model) to one LLVM module.
+// This header is LLVM-free so that the driver and the controller can include
+// it cheaply; CodeGenLLVM.h gives the JIT access to the module itself.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "basic/Diagnostics.h"
+#include "basic/SourceManager.h"
+
+namespace stc::sema { struct Model; class Type; }
+
+namespace stc::codegen {
+
+struct CodegenOptions {
+  unsigned optLevel = 2;       // -O0..-O3
+  bool checks = true;          // runtime checks (division by zero, bounds, null, subranges)
+  bool debugInfo = false;      // -g
+  // Programs to run when there is no CONFIGURATION (stc run --program); empty: automatic.
+  std::vector<std::string> programs;
+  int64_t defaultIntervalNs = 1'000'000;
+};
+
+// Where a runtime fault can happen: each check and safepoint has one.
+struct Site {
+  SourceRange range;
+  std::string pou;
+  std::string detail;          // e.g. the array or variable name
+};
+
+enum class FaultKind : uint32_t {
+  DivisionByZero = 1, Index = 2, Subrange = 3, NullPointer = 4, NullReference = 5,
+  NullInterface = 6, UnboundInOut = 7, ForStepZero = 8, StringIndex = 9,
+};
+const char* faultCode(FaultKind k);      // "fault-division-by-zero", ...
+
+// A named top-level object in the memory image.
+struct ImageRoot {
+  std::string path;            // "GVL.x", "x", "MAIN", "FB_Counter.count" (VAR_STAT)
+  uint64_t offset = 0;
+  const sema::Type* type = nullptr;
+  bool retain = false, persistent = false, constant = false, alias = false;   // alias: another name of an earlier root
+};
+
+struct ImageMap {
+  uint64_t size = 0;
+  std::vector<ImageRoot> roots;
+  uint64_t inputOffset = 0, inputSize = 0, outputOffset = 0, outputSize = 0, memoryOffset = 0, memorySize = 0;
+  const ImageRoot* find(const std::string& upperPath) const;
+};
+
+// A task and what it runs (from a CONFIGURATION, or the implicit one).
+struct TaskPlan {
+  enum class Kind { Cyclic, Event, Freewheeling };
+  std::string name;
+  Kind kind = Kind::Cyclic;
+  int64_t intervalNs = 1'000'000;
+  int priority = 0;
+  std::string singlePath;                   // Event: the BOOL that triggers it (image path)
+  std::optional<uint64_t> singleOffset;     // its image offset
+  std::vector<std::string> entries;         // JIT symbols, one per program instance, in order
+  std::vector<std::string> programNames;    // instance names (messages)
+  bool mayBlock = false;                    // contains a safepoint (loop) or a blocking call
+};
+
+class CompiledModule {
+public:
+  struct Impl;
+  explicit CompiledModule(std::unique_ptr<Impl> impl);
+  ~CompiledModule();
+  Impl& impl() { return *impl_; }
+
+  ImageMap image;
+  std::vector<Site> sites;                  // index = site id (0 unused)
+  std::vector<TaskPlan> tasks;
+  std::vector<std::string> natives;         // external POU symbols the module calls (native bindings)
+
+private:
+  std::unique_ptr<Impl> impl_;
+};
+
+// Generates and optimises the module.  Reports problems (e.g. no program
+// to run) to `diags`; returns null then.
+std::unique_ptr<CompiledModule> generate(const sema::Model& model, const SourceManager& sm, DiagnosticsEngine& diags,
+                                         const CodegenOptions& opts, bool needTasks);
+
+enum class EmitKind { LLVM, Object };
+// Writes the module as textual IR or a relocatable object ("-" = stdout for IR).
+bool emit(CompiledModule& m, EmitKind kind, const std::string& path, std::string& error);
+
+}  // namespace stc::codegen

@@ -1,0 +1,175 @@
+#include "vm/Controller.h"
+
+#include <cstring>
+#include <ostream>
+
+#include "sema/Model.h"
+#include "vm/Image.h"
+#include "vm/Jit.h"
+#include "vm/Runtime.h"
+#include "vm/Scheduler.h"
+#include "vm/Trace.h"
+
+namespace stc::vm {
+
+Controller::Controller(const sema::Model& model, DiagnosticsEngine& diags) : model_(model), diags_(diags) {}
+Controller::~Controller() = default;
+
+bool Controller::load(std::unique_ptr<codegen::CompiledModule> module, std::string& error) {
+  module_ = std::move(module);
+  for (const std::string& n : module_->natives) {
+    // Natives are bound through the native API (docs/native-api.md); none
+    // is registered for this name.
+    error = "'" + n.substr(7) + "' is declared {attribute 'native'} but no native implementation is available in this build";
+    return false;
+  }
+  jit_ = Jit::create(*module_, runtimeSymbols(), error);
+  if (!jit_) return false;
+  image_ = static_cast<uint8_t*>(jit_->lookup("__stc_image", error));
+  if (!image_) return false;
+  initDynamic_ = reinterpret_cast<void (*)()>(jit_->lookup("__stc_init_dynamic", error));
+  if (!initDynamic_) return false;
+  coldSnapshot_.assign(image_, image_ + module_->image.size);
+  sched_ = std::make_unique<Scheduler>();
+  for (const codegen::TaskPlan& plan : module_->tasks) {
+    auto rt = std::make_unique<TaskRuntime>();
+    for (const std::string& e : plan.entries) {
+      auto fn = reinterpret_cast<void (*)()>(jit_->lookup(e, error));
+      if (!fn) return false;
+      rt->entries.push_back(fn);
+    }
+    tasks_.push_back(std::move(rt));
+  }
+  // Cold start: the constant image is already in place; the initial values
+  // that did not fold are computed now.
+  __stc_budget = INT64_MAX / 2;
+  initDynamic_();
+  return true;
+}
+
+int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err) {
+  const sema::Layout& layout = *model_.layout;
+  // Watches and traces are resolved before anything runs.
+  std::vector<ValueRef> watches;
+  for (const std::string& w : opts.watches) {
+    ValueRef ref;
+    std::string e;
+    if (!resolvePath(module_->image, layout, w, ref, e)) {
+      err << "stc: error: --watch " << w << ": " << e << "\n";
+      return 2;
+    }
+    watches.push_back(ref);
+  }
+  std::vector<ValueRef> traced;
+  std::unique_ptr<TraceWriter> trace;
+  if (!opts.traces.empty()) {
+    std::vector<TraceColumn> cols;
+    for (const std::string& w : opts.traces) {
+      ValueRef ref;
+      std::string e;
+      if (!resolvePath(module_->image, layout, w, ref, e)) {
+        err << "stc: error: --trace " << w << ": " << e << "\n";
+        return 2;
+      }
+      const sema::Type* t = ref.type->kind == sema::TypeKind::Subrange ? ref.type->element : ref.type;
+      const sema::Type* u = t->underlying();
+      TraceColumn c;
+      c.name = w;
+      if (u->isBool()) c.kind = TraceColumn::Bool, c.bits = 1;
+      else if (u->isReal()) c.kind = TraceColumn::Real, c.bits = u->bits();
+      else if (u->isElementary() && !u->isString()) c.kind = TraceColumn::Int, c.bits = u->bits(), c.isSigned = u->isSignedInt() || u->isDuration();
+      else c.kind = TraceColumn::Text;
+      cols.push_back(c);
+      traced.push_back(ref);
+    }
+    std::string e;
+    trace = TraceWriter::create(opts.traceOut.empty() ? "trace.csv" : opts.traceOut, cols, e);
+    if (!trace) {
+      err << "stc: error: " << e << "\n";
+      return 2;
+    }
+  }
+  SchedulerOptions so;
+  so.measure = opts.stats;
+  so.realtime = opts.realtime;
+  sched_ = std::make_unique<Scheduler>(so);
+  for (size_t i = 0; i < module_->tasks.size(); ++i) {
+    const codegen::TaskPlan& plan = module_->tasks[i];
+    TaskConfig tc;
+    tc.name = plan.name;
+    tc.kind = plan.kind == codegen::TaskPlan::Kind::Cyclic ? TaskKind::Cyclic
+              : plan.kind == codegen::TaskPlan::Kind::Event ? TaskKind::Event : TaskKind::Freewheeling;
+    tc.interval = plan.intervalNs;
+    tc.priority = plan.priority;
+    tc.mayBlock = plan.mayBlock;
+    if (opts.watchdog) tc.watchdog = *opts.watchdog;
+    if (opts.slice) tc.slice = *opts.slice;
+    if (plan.singleOffset) {
+      const uint8_t* flag = image_ + *plan.singleOffset;
+      tc.eventInput = [flag] { return *flag != 0; };
+    }
+    TaskRuntime* rt = tasks_[i].get();
+    if (rt->entries.size() == 1) tc.entry = rt->entries[0];
+    else tc.entry = [rt] { for (auto* f : rt->entries) f(); };
+    sched_->addTask(std::move(tc));
+  }
+  if (trace) {
+    TraceWriter* tw = trace.get();
+    sched_->setTickCallback([this, tw, &traced, &layout](Time now) {
+      std::vector<TraceValue> values(traced.size());
+      for (size_t k = 0; k < traced.size(); ++k) {
+        const uint8_t* p = image_ + traced[k].offset;
+        const sema::Type* u = traced[k].type->underlying();
+        values[k].literal = formatValue(p, traced[k].type, layout);
+        if (u->isReal()) {
+          if (u->kind == sema::TypeKind::Real) { float f; std::memcpy(&f, p, 4); values[k].real = f; }
+          else std::memcpy(&values[k].real, p, 8);
+        } else if (u->isElementary() && !u->isString()) {
+          unsigned n = std::max(1u, u->bits() / 8);
+          uint64_t v = 0;
+          std::memcpy(&v, p, n);
+          values[k].bits = v;
+        }
+      }
+      tw->sample(now, values);
+    });
+  }
+  RunLimit limit;
+  limit.cycles = opts.cycles;
+  limit.until = opts.duration;
+  if (!limit.cycles && !limit.until) limit.cycles = 1;
+  sched_->run(limit);
+  if (trace) {
+    std::string e;
+    if (!trace->finish(e)) err << "stc: error: " << e << "\n";
+  }
+  for (size_t k = 0; k < watches.size(); ++k)
+    out << opts.watches[k] << " = " << formatValue(image_ + watches[k].offset, watches[k].type, layout) << "\n";
+  out.flush();
+  if (opts.stats) {
+    for (size_t i = 0; i < sched_->taskCount(); ++i) {
+      const TaskStats& s = sched_->stats()[i];
+      err << "task '" << sched_->task(static_cast<uint32_t>(i)).name << "': " << s.slots << " slots, " << s.activations << " activations, "
+          << s.overruns << " overruns, " << s.lostEvents << " lost events";
+      if (s.slots)
+        err << "; execution min " << s.execMinNs << " ns, avg " << s.execTotalNs / static_cast<int64_t>(s.slots) << " ns, max " << s.execMaxNs
+            << " ns";
+      err << "\n";
+    }
+  }
+  reportFaults(err);
+  return sched_->faults().empty() ? 0 : 3;
+}
+
+void Controller::reportFaults(std::ostream&) {
+  for (const TaskFault& f : sched_->faults()) {
+    const codegen::Site* site = f.info.site < module_->sites.size() ? &module_->sites[f.info.site] : nullptr;
+    std::string msg = "runtime fault in task '" + sched_->task(f.task).name + "', cycle " + std::to_string(f.cycle) + " (" +
+                      formatIecTime(f.now) + "): " + f.info.message;
+    if (site && !site->detail.empty() && f.info.code == "fault-index") msg += " of '" + site->detail + "'";
+    if (site && site->range.begin.valid()) diags_.error(site->range.begin, msg, f.info.code.c_str()).range(site->range);
+    else diags_.error(SourceLoc{}, msg, f.info.code.c_str());
+  }
+}
+
+}  // namespace stc::vm

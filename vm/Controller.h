@@ -1,0 +1,67 @@
+// The virtual controller: loads a compiled program into the JIT, holds its
+// memory image, builds the tasks on the deterministic scheduler and runs
+// them; reports faults with their source location; prints watches and
+// writes traces.  See docs/vm.md.
+#pragma once
+
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "basic/Diagnostics.h"
+#include "codegen/CodeGen.h"
+#include "vm/Time.h"
+
+namespace stc::sema { struct Model; }
+
+namespace stc::vm {
+
+class Jit;
+class Scheduler;
+class TraceWriter;
+
+struct RunOptions {
+  std::optional<uint64_t> cycles;        // slots of the fastest cyclic task
+  std::optional<Time> duration;          // run every tick T < duration
+  bool realtime = false;
+  bool stats = false;
+  std::vector<std::string> watches;
+  std::vector<std::string> traces;
+  std::string traceOut;
+  std::optional<Time> watchdog;
+  std::optional<int64_t> slice;
+};
+
+class Controller {
+public:
+  Controller(const sema::Model& model, DiagnosticsEngine& diags);
+  ~Controller();
+  // JIT-compiles the module and performs a cold start.  False with `error`.
+  bool load(std::unique_ptr<codegen::CompiledModule> module, std::string& error);
+  // Runs; prints the watches to `out`.  Returns the exit status:
+  // 0 ok, 2 a bad watch/trace request, 3 a runtime fault happened.
+  int run(const RunOptions& opts, std::ostream& out, std::ostream& err);
+
+  uint8_t* image() const { return image_; }
+  const codegen::ImageMap& imageMap() const { return module_->image; }
+  Scheduler& scheduler() { return *sched_; }
+
+private:
+  void reportFaults(std::ostream& err);
+  const sema::Model& model_;
+  DiagnosticsEngine& diags_;
+  std::unique_ptr<codegen::CompiledModule> module_;
+  std::unique_ptr<Jit> jit_;
+  std::unique_ptr<Scheduler> sched_;
+  uint8_t* image_ = nullptr;
+  std::vector<uint8_t> coldSnapshot_;
+  void (*initDynamic_)() = nullptr;
+  struct TaskRuntime {
+    std::vector<void (*)()> entries;
+  };
+  std::vector<std::unique_ptr<TaskRuntime>> tasks_;
+};
+
+}  // namespace stc::vm
