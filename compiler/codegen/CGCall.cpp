@@ -35,7 +35,7 @@ llvm::Value* CodeGen::emitCall(const CallExpr* e, Address* resultOut) {
       return emitBuiltin(e);
     case Symbol::Function: {
       llvm::Value* r = callPou(e, t, nullptr, false);
-      if (resultOut && returnsIndirect(t)) *resultOut = Address{r, t->pou->returnType};
+      if (resultOut && returnsIndirect(t)) *resultOut = Address{r, returnTypeOf(t)};
       return r;
     }
     case Symbol::Program: {
@@ -56,8 +56,10 @@ llvm::Value* CodeGen::emitCall(const CallExpr* e, Address* resultOut) {
       if (auto* m = dyn_cast<MemberExpr>(e->callee)) {
         const Type* bt = m->base->type ? strip(m->base->type) : nullptr;
         if (bt && bt->kind == TypeKind::Interface) {
-          error(e->range, "calls through interfaces are not supported by the code generator yet");
-          return nullptr;
+          auto [s, fp] = interfaceSlot(m->base, t);
+          llvm::Value* r = callPou(e, t, s, false, fp);
+          if (resultOut && returnsIndirect(t)) *resultOut = Address{r, returnTypeOf(t)};
+          return r;
         }
         bool viaSuper = false;
         if (auto* d = dyn_cast<DerefExpr>(m->base)) viaSuper = isa<SuperExpr>(d->base);
@@ -68,7 +70,7 @@ llvm::Value* CodeGen::emitCall(const CallExpr* e, Address* resultOut) {
         virt = t->kind == Symbol::Method;
       }
       llvm::Value* r = callPou(e, t, self, virt);
-      if (resultOut && t->kind == Symbol::Method && returnsIndirect(t)) *resultOut = Address{r, t->pou->returnType};
+      if (resultOut && t->kind == Symbol::Method && returnsIndirect(t)) *resultOut = Address{r, returnTypeOf(t)};
       return r;
     }
     default:
@@ -77,13 +79,16 @@ llvm::Value* CodeGen::emitCall(const CallExpr* e, Address* resultOut) {
   }
 }
 
-llvm::Value* CodeGen::callPou(const CallExpr* e, Symbol* target, llvm::Value* self, bool virtualCall) {
-  llvm::Function* f = functionFor(target);
+llvm::Value* CodeGen::callPou(const CallExpr* e, Symbol* target, llvm::Value* self, bool virtualCall, llvm::Value* fnPtr) {
+  // Through an interface slot only the signature is needed (the interface's
+  // own method has no body).
+  llvm::Function* f = fnPtr ? nullptr : functionFor(target);
+  llvm::FunctionType* fty = f ? f->getFunctionType() : signatureOf(target);
   std::vector<llvm::Value*> args;
   Address result;
   bool indirect = target->kind != Symbol::Action && returnsIndirect(target);
   if (indirect) {
-    result = temporary(target->pou->returnType, "ret");
+    result = temporary(returnTypeOf(target), "ret");
     args.push_back(result.ptr);
   }
   if (target->kind == Symbol::Method || target->kind == Symbol::Action) args.push_back(self);
@@ -122,7 +127,9 @@ llvm::Value* CodeGen::callPou(const CallExpr* e, Symbol* target, llvm::Value* se
       }
     }
   llvm::CallInst* call;
-  if (virtualCall && fs_ && fs_->fn) {
+  if (fnPtr) {
+    call = b_.CreateCall(fty, fnPtr, args);
+  } else if (virtualCall && fs_ && fs_->fn) {
     Symbol* owner = ownerOf(target);
     int slot = owner ? vtableSlot(owner->type, slotKey(target)) : -1;
     if (slot < 0) {
@@ -137,7 +144,7 @@ llvm::Value* CodeGen::callPou(const CallExpr* e, Symbol* target, llvm::Value* se
     call = b_.CreateCall(f, args);
     if (fs_ && fs_->fn) calls_[fs_->fn].insert(f);
   }
-  call->setAttributes(f->getAttributes());
+  if (f) call->setAttributes(f->getAttributes());
   for (Out& o : outs) {
     Address dst = emitAddr(o.arg->value);
     llvm::Value* v = load(o.temp);
@@ -209,44 +216,51 @@ void CodeGen::callInstance(const CallExpr* e, Symbol* fbSym, llvm::Value* inst) 
 
 // ------------------------------------------------------------------ properties
 
-static Symbol* accessorOf(const std::vector<Symbol*>& pous, Symbol* prop, PouKind kind) {
-  for (Symbol* p : pous)
-    if (p->pou && p->pou->decl && p->pou->decl->pouKind == kind && p->pou->owner == prop->pou->owner &&
-        equalsIgnoreCase(p->pou->decl->owner->name.parts.back().name, prop->name))
-      return p;
-  return nullptr;
+static Symbol* accessorOf(Symbol* prop, PouKind kind) {
+  const PouDecl* d = prop->pou ? prop->pou->decl : nullptr;
+  const PouDecl* acc = d ? (kind == PouKind::PropertyGet ? d->getter : d->setter) : nullptr;
+  return acc ? acc->symbol : nullptr;
 }
 
 llvm::Value* CodeGen::emitPropertyGet(const Expr* e, Symbol* prop) {
-  Symbol* get = accessorOf(model_.pous, prop, PouKind::PropertyGet);
+  Symbol* get = accessorOf(prop, PouKind::PropertyGet);
   if (!get) {
     error(e->range, "property '" + prop->name + "' has no GET accessor");
     return llvm::UndefValue::get(valueType(e->type));
   }
   llvm::Value* self = fs_ ? fs_->self : nullptr;
   bool virt = true;
+  CallExpr fake;
+  fake.target = get;
   if (auto* m = dyn_cast<MemberExpr>(e)) {
+    if (m->base->type && strip(m->base->type)->kind == TypeKind::Interface) {
+      auto [s, fp] = interfaceSlot(m->base, get);
+      return callPou(&fake, get, s, false, fp);
+    }
     self = instancePtr(m->base);
     virt = !isValueInstance(m->base);
   }
-  CallExpr fake;
-  fake.target = get;
   return callPou(&fake, get, self, virt);
 }
 
 void CodeGen::emitPropertySet(const Expr* lhs, Symbol* prop, const Expr* rhs) {
-  Symbol* set = accessorOf(model_.pous, prop, PouKind::PropertySet);
+  Symbol* set = accessorOf(prop, PouKind::PropertySet);
   if (!set) {
     error(lhs->range, "property '" + prop->name + "' has no SET accessor");
     return;
   }
   llvm::Value* self = fs_->self;
   bool virt = true;
-  if (auto* m = dyn_cast<MemberExpr>(lhs)) {
+  llvm::Value* fnPtr = nullptr;
+  if (auto* m = dyn_cast<MemberExpr>(lhs); m && m->base->type && strip(m->base->type)->kind == TypeKind::Interface) {
+    auto [s, fp] = interfaceSlot(m->base, set);
+    self = s;
+    fnPtr = fp;
+  } else if (auto* m = dyn_cast<MemberExpr>(lhs)) {
     self = instancePtr(m->base);
     virt = !isValueInstance(m->base);
   }
-  llvm::Function* f = functionFor(set);
+  llvm::FunctionType* fty = fnPtr ? signatureOf(set) : functionFor(set)->getFunctionType();
   const Type* vt = prop->pou->returnType;
   llvm::Value* v;
   if (isAggregate(vt)) {
@@ -258,12 +272,15 @@ void CodeGen::emitPropertySet(const Expr* lhs, Symbol* prop, const Expr* rhs) {
   }
   Symbol* owner = ownerOf(set);
   int slot = virt && owner ? vtableSlot(owner->type, slotKey(set)) : -1;
-  if (slot >= 0) {
+  if (fnPtr) {
+    b_.CreateCall(fty, fnPtr, {self, v});
+  } else if (slot >= 0) {
     llvm::Value* vptr = b_.CreateAlignedLoad(ptrTy_, self, llvm::MaybeAlign(8));
     llvm::Value* fp = b_.CreateAlignedLoad(ptrTy_, b_.CreateConstInBoundsGEP1_64(ptrTy_, vptr, static_cast<uint64_t>(slot + 2)), llvm::MaybeAlign(8));
-    b_.CreateCall(f->getFunctionType(), fp, {self, v});
+    b_.CreateCall(fty, fp, {self, v});
     indirectCallers_.insert(fs_->fn);
   } else {
+    llvm::Function* f = functionFor(set);
     b_.CreateCall(f, {self, v});
     calls_[fs_->fn].insert(f);
   }

@@ -558,10 +558,13 @@ llvm::Value* CodeGen::emitBinary(const BinaryExpr* e) {
       return b_.CreateSDiv(t, ni);
     }
   }
+  if (cmp && (lt->kind == TypeKind::Interface || rt->kind == TypeKind::Interface)) {
+    // Interfaces compare by instance.
+    return emitCompare(op, interfaceSelf(e->lhs), interfaceSelf(e->rhs), ot);
+  }
   if (cmp) {
     llvm::Value* l = emitValue(e->lhs, ot);
     llvm::Value* r = emitValue(e->rhs, ot);
-    if (os->kind == TypeKind::Interface) { l = b_.CreateExtractValue(l, 0); r = b_.CreateExtractValue(r, 0); }
     return emitCompare(op, l, r, ot);
   }
   // Pointer arithmetic (CODESYS): byte offsets.
@@ -636,7 +639,7 @@ void CodeGen::assign(Address dst, const Expr* src) {
     return;
   }
   if (t->kind == TypeKind::Interface) {
-    error(src->range, "interface values are not supported by the code generator yet");
+    assignInterface(dst, src);
     return;
   }
   if (isAggregate(t)) {

@@ -90,7 +90,8 @@ public:
   // ------------------------------------------------------------ POUs (CodeGen.cpp)
   llvm::Function* functionFor(Symbol* pou);    // declares on demand
   llvm::FunctionType* signatureOf(Symbol* pou);
-  bool returnsIndirect(Symbol* pou);           // aggregate result through a leading pointer
+  bool returnsIndirect(Symbol* pou);
+  const Type* returnTypeOf(Symbol* pou);       // result type (accessors: the property's)           // aggregate result through a leading pointer
   void lowerPou(Symbol* pou);
   bool isNative(const Symbol* pou) const;
   Symbol* ownerOf(Symbol* pou) const;          // FB/program of a method/action/accessor
@@ -142,12 +143,21 @@ public:
 
   // ------------------------------------------------------------ calls (CGCall.cpp)
   llvm::Value* emitCall(const ast::CallExpr* e, Address* resultOut = nullptr);
-  llvm::Value* callPou(const ast::CallExpr* e, Symbol* target, llvm::Value* self, bool virtualCall);
+  // fnPtr: call through this pointer (interface slots) instead of the symbol.
+  llvm::Value* callPou(const ast::CallExpr* e, Symbol* target, llvm::Value* self, bool virtualCall, llvm::Value* fnPtr = nullptr);
   void callInstance(const ast::CallExpr* e, Symbol* fbType, llvm::Value* inst);
   llvm::Value* emitBuiltin(const ast::CallExpr* e);
   llvm::Value* arg(const ast::CallExpr* e, size_t i, const Type* to);
   llvm::Value* emitPropertyGet(const ast::Expr* e, Symbol* prop);
   void emitPropertySet(const ast::Expr* lhs, Symbol* prop, const ast::Expr* rhs);
+
+  // ------------------------------------------------------------ interfaces (CGOop.cpp)
+  std::vector<std::string> itableKeys(const Type* itf);
+  llvm::Constant* itableFor(const Type* fb, const Type* itf);
+  llvm::Value* interfaceSelf(const ast::Expr* e);
+  void assignInterface(Address dst, const ast::Expr* src);
+  std::pair<llvm::Value*, llvm::Value*> interfaceSlot(const ast::Expr* receiver, Symbol* method);   // {self, function}
+  std::map<std::pair<const Type*, const Type*>, llvm::Constant*> itables_;
 
   // ------------------------------------------------------------ checks (CGChecks.cpp)
   uint32_t site(const ast::Node* n, std::string detail = "");

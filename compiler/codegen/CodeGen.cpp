@@ -115,8 +115,24 @@ const std::vector<Symbol*>& CodeGen::paramsOf(Symbol* pou) {
   return params_[pou] = params;
 }
 
+// Accessors of interface properties are never analysed as bodies: their
+// types come from the property.
+static Symbol* propertyOf(Symbol* accessor) {
+  const PouDecl* d = accessor->pou ? accessor->pou->decl : nullptr;
+  if (!d || (d->pouKind != PouKind::PropertyGet && d->pouKind != PouKind::PropertySet) || !accessor->pou->owner) return nullptr;
+  return accessor->pou->owner->pou->members->lookupLocal(asciiUpper(d->owner->name.parts.back().name));
+}
+
+const Type* CodeGen::returnTypeOf(Symbol* pou) {
+  if (Symbol* prop = propertyOf(pou)) {
+    if (pou->pou->decl->pouKind == PouKind::PropertySet) return elementary(TypeKind::Void);
+    return prop->pou->returnType ? prop->pou->returnType : prop->type;
+  }
+  return pou->pou->returnType;
+}
+
 bool CodeGen::returnsIndirect(Symbol* pou) {
-  const Type* r = pou->pou->returnType;
+  const Type* r = returnTypeOf(pou);
   return r && r->kind != TypeKind::Void && isAggregate(r);
 }
 
@@ -137,15 +153,20 @@ llvm::FunctionType* CodeGen::signatureOf(Symbol* pou) {
   llvm::Type* ret = llvm::Type::getVoidTy(ctx_);
   if (pou->kind == Symbol::FunctionBlock || pou->kind == Symbol::Program || pou->kind == Symbol::Action)
     return llvm::FunctionType::get(ret, {ptrTy_}, false);
+  const Type* rt = returnTypeOf(pou);
   if (returnsIndirect(pou)) params.push_back(ptrTy_);
-  else if (pou->pou->returnType && pou->pou->returnType->kind != TypeKind::Void) ret = valueType(pou->pou->returnType);
+  else if (rt && rt->kind != TypeKind::Void) ret = valueType(rt);
   if (hasThis(pou)) params.push_back(ptrTy_);
   for (Symbol* p : pou->pou->params) {
     VarSection sec = p->var->section;
     if (sec == VarSection::Input && !isAggregate(p->type)) params.push_back(valueType(p->type));
     else params.push_back(ptrTy_);
   }
-  if (Symbol* v = setterValue(pou)) params.push_back(isAggregate(v->type) ? ptrTy_ : valueType(v->type));
+  if (pou->pou->decl && pou->pou->decl->pouKind == PouKind::PropertySet)
+    if (Symbol* prop = propertyOf(pou)) {
+      const Type* vt = prop->pou->returnType ? prop->pou->returnType : prop->type;
+      params.push_back(isAggregate(vt) ? ptrTy_ : valueType(vt));
+    }
   return llvm::FunctionType::get(ret, params, false);
 }
 
@@ -183,8 +204,8 @@ llvm::Function* CodeGen::functionFor(Symbol* pou) {
   unsigned idx = 0;
   if (!(pou->kind == Symbol::FunctionBlock || pou->kind == Symbol::Program || pou->kind == Symbol::Action)) {
     if (returnsIndirect(pou)) ++idx;
-    else if (pou->pou->returnType && pou->pou->returnType->kind != TypeKind::Void)
-      if (auto a = extAttr(pou->pou->returnType); a != llvm::Attribute::None) f->addRetAttr(a);
+    else if (returnTypeOf(pou) && returnTypeOf(pou)->kind != TypeKind::Void)
+      if (auto a = extAttr(returnTypeOf(pou)); a != llvm::Attribute::None) f->addRetAttr(a);
     if (hasThis(pou)) ++idx;
     for (Symbol* p : pou->pou->params) {
       if (p->var->section == VarSection::Input && !isAggregate(p->type))

@@ -1,0 +1,147 @@
+#include "vm/Retain.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+using namespace stc::vm;
+namespace fs = std::filesystem;
+
+namespace {
+
+class RetainTest : public ::testing::Test {
+protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("stc-retain-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+    file_ = (dir_ / "plc.ret").string();
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::vector<uint8_t> bytes() const {
+    std::ifstream in(file_, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+  }
+  void writeBytes(const std::vector<uint8_t>& b) const {
+    std::ofstream out(file_, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
+  }
+  fs::path dir_;
+  std::string file_;
+};
+
+std::vector<RetainEntry> sample() {
+  return {{"GVL.a", "UDINT", {1, 2, 3, 4}},
+          {"MAIN.fb", "FB:TON{IN:BOOL,PT:TIME}", std::vector<uint8_t>(300, 0xAB)},
+          {"GVL.empty", "", {}}};
+}
+
+TEST(Crc32, KnownVector) {
+  const char* s = "123456789";
+  EXPECT_EQ(crc32(reinterpret_cast<const uint8_t*>(s), 9), 0xCBF43926u);
+  EXPECT_EQ(crc32(nullptr, 0), 0u);
+}
+
+TEST_F(RetainTest, RoundTrip) {
+  std::string error;
+  ASSERT_TRUE(saveRetainFile(file_, sample(), error)) << error;
+  EXPECT_FALSE(fs::exists(file_ + ".tmp"));
+  std::vector<RetainEntry> got;
+  ASSERT_EQ(loadRetainFile(file_, got, error), RetainLoad::Ok) << error;
+  auto want = sample();
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i].path, want[i].path);
+    EXPECT_EQ(got[i].signature, want[i].signature);
+    EXPECT_EQ(got[i].bytes, want[i].bytes);
+  }
+}
+
+TEST_F(RetainTest, ExactLayout) {
+  std::string error;
+  ASSERT_TRUE(saveRetainFile(file_, {{"a", "BOOL", {1}}}, error)) << error;
+  std::vector<uint8_t> want = {'S', 'T', 'C', 'R', 'E', 'T', '0', '1', 1, 0, 0, 0, 1, 0, 0, 0,
+                               1,   0,   0,   0,   'a', 4,   0,   0,   0, 'B', 'O', 'O', 'L',
+                               1,   0,   0,   0,   1};
+  uint32_t crc = crc32(want.data(), want.size());
+  for (int i = 0; i < 4; ++i) want.push_back(static_cast<uint8_t>(crc >> (8 * i)));
+  EXPECT_EQ(bytes(), want);
+}
+
+TEST_F(RetainTest, SaveReplacesTheOldFile) {
+  std::string error;
+  ASSERT_TRUE(saveRetainFile(file_, sample(), error));
+  ASSERT_TRUE(saveRetainFile(file_, {{"x", "INT", {9, 9}}}, error));
+  std::vector<RetainEntry> got;
+  ASSERT_EQ(loadRetainFile(file_, got, error), RetainLoad::Ok);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].path, "x");
+}
+
+TEST_F(RetainTest, Missing) {
+  std::string error;
+  std::vector<RetainEntry> got;
+  EXPECT_EQ(loadRetainFile(file_, got, error), RetainLoad::Missing);
+  EXPECT_TRUE(got.empty());
+}
+
+TEST_F(RetainTest, BadCrcIsCorrupt) {
+  std::string error;
+  ASSERT_TRUE(saveRetainFile(file_, sample(), error));
+  auto b = bytes();
+  b[30] ^= 0x01;  // inside the first entry
+  writeBytes(b);
+  std::vector<RetainEntry> got;
+  EXPECT_EQ(loadRetainFile(file_, got, error), RetainLoad::Corrupt);
+  EXPECT_EQ(error, "'" + file_ + "' has a bad checksum");
+  EXPECT_TRUE(got.empty());
+}
+
+TEST_F(RetainTest, TruncatedAndForeignFilesAreCorrupt) {
+  std::string error;
+  ASSERT_TRUE(saveRetainFile(file_, sample(), error));
+  auto b = bytes();
+  std::vector<RetainEntry> got;
+  writeBytes({b.begin(), b.begin() + 20});
+  EXPECT_EQ(loadRetainFile(file_, got, error), RetainLoad::Corrupt);
+  writeBytes({'h', 'e', 'l', 'l', 'o'});
+  EXPECT_EQ(loadRetainFile(file_, got, error), RetainLoad::Corrupt);
+  EXPECT_EQ(error, "'" + file_ + "' is not a retain file");
+
+  // A valid CRC over a malformed body: an entry size beyond the end.
+  std::vector<uint8_t> bad = {'S', 'T', 'C', 'R', 'E', 'T', '0', '1', 1, 0, 0, 0, 1, 0, 0, 0, 200, 0, 0, 0};
+  uint32_t crc = crc32(bad.data(), bad.size());
+  for (int i = 0; i < 4; ++i) bad.push_back(static_cast<uint8_t>(crc >> (8 * i)));
+  writeBytes(bad);
+  EXPECT_EQ(loadRetainFile(file_, got, error), RetainLoad::Corrupt);
+  EXPECT_EQ(error, "'" + file_ + "' is malformed: truncated entry 0");
+  EXPECT_TRUE(got.empty());
+}
+
+TEST_F(RetainTest, LeftoverTmpIsRemoved) {
+  std::string error;
+  ASSERT_TRUE(saveRetainFile(file_, sample(), error));
+  { std::ofstream(file_ + ".tmp") << "half-written"; }
+  std::vector<RetainEntry> got;
+  EXPECT_EQ(loadRetainFile(file_, got, error), RetainLoad::Ok);
+  EXPECT_EQ(got.size(), 3u);
+  EXPECT_FALSE(fs::exists(file_ + ".tmp"));
+
+  // Also when FILE itself is missing.
+  fs::remove(file_);
+  { std::ofstream(file_ + ".tmp") << "half-written"; }
+  EXPECT_EQ(loadRetainFile(file_, got, error), RetainLoad::Missing);
+  EXPECT_FALSE(fs::exists(file_ + ".tmp"));
+}
+
+TEST_F(RetainTest, SaveIntoMissingDirectoryFails) {
+  std::string error;
+  EXPECT_FALSE(saveRetainFile((dir_ / "nope" / "x.ret").string(), sample(), error));
+  EXPECT_NE(error.find("cannot create"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,232 @@
+#include "vm/Trace.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+
+namespace stc::vm {
+namespace {
+
+// Buffered output to a FILE*; errors are collected and reported by close().
+class Output {
+public:
+  ~Output() {
+    if (file_) std::fclose(file_);
+  }
+  bool open(const std::string& path, std::string& error) {
+    file_ = std::fopen(path.c_str(), "wb");
+    if (!file_) {
+      error = "cannot open '" + path + "': " + std::strerror(errno);
+      return false;
+    }
+    path_ = path;
+    return true;
+  }
+  std::string& buffer() { return buf_; }
+  void flushIfBig() {
+    if (buf_.size() >= 1 << 16) flush();
+  }
+  bool close(std::string& error) {
+    if (!file_) return true;
+    flush();
+    bool ok = !failed_;
+    if (std::fclose(file_) != 0) ok = false;
+    file_ = nullptr;
+    if (!ok) error = "cannot write '" + path_ + "': " + std::strerror(errno ? errno : EIO);
+    return ok;
+  }
+
+private:
+  void flush() {
+    if (!buf_.empty() && std::fwrite(buf_.data(), 1, buf_.size(), file_) != buf_.size()) failed_ = true;
+    buf_.clear();
+  }
+  std::FILE* file_ = nullptr;
+  std::string path_;
+  std::string buf_;
+  bool failed_ = false;
+};
+
+// RFC 4180 quoting, also for spaces so that naive splitters agree.
+void appendCsvField(std::string& out, std::string_view s) {
+  if (s.find_first_of(",\" \r\n") == std::string_view::npos) {
+    out.append(s);
+    return;
+  }
+  out.push_back('"');
+  for (char c : s) {
+    if (c == '"') out.push_back('"');
+    out.push_back(c);
+  }
+  out.push_back('"');
+}
+
+class CsvWriter final : public TraceWriter {
+public:
+  CsvWriter(std::unique_ptr<Output> out, std::vector<TraceColumn> columns) : out_(std::move(out)) {
+    std::string& b = out_->buffer();
+    b += "time";
+    for (const TraceColumn& c : columns) {
+      b += ',';
+      appendCsvField(b, c.name);
+    }
+    b += '\n';
+  }
+  void sample(Time t, const std::vector<TraceValue>& values) override {
+    std::string& b = out_->buffer();
+    b += formatSeconds(t);
+    for (const TraceValue& v : values) {
+      b += ',';
+      appendCsvField(b, v.literal);
+    }
+    b += '\n';
+    out_->flushIfBig();
+  }
+  bool finish(std::string& error) override { return out_->close(error); }
+
+private:
+  std::unique_ptr<Output> out_;
+};
+
+class VcdWriter final : public TraceWriter {
+public:
+  VcdWriter(std::unique_ptr<Output> out, std::vector<TraceColumn> columns)
+      : out_(std::move(out)), columns_(std::move(columns)) {
+    std::string& b = out_->buffer();
+    b += "$timescale 1ns $end\n$scope module top $end\n";
+    for (size_t i = 0; i < columns_.size(); ++i) {
+      TraceColumn& c = columns_[i];
+      if (c.kind == TraceColumn::Bool) c.bits = 1;
+      if (c.kind == TraceColumn::Int && (c.bits == 0 || c.bits > 64)) c.bits = 64;
+      ids_.push_back(identifier(i));
+      b += "$var ";
+      b += c.kind == TraceColumn::Real ? "real 64 " : "wire " + std::to_string(c.bits) + ' ';
+      b += ids_.back();
+      b += ' ';
+      // Whitespace would end the reference in the VCD grammar.
+      for (char ch : c.name) b += (ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r') ? '_' : ch;
+      b += " $end\n";
+    }
+    b += "$upscope $end\n$enddefinitions $end\n";
+    last_.resize(columns_.size());
+  }
+
+  void sample(Time t, const std::vector<TraceValue>& values) override {
+    std::string& b = out_->buffer();
+    if (first_) {
+      b += '#';
+      b += std::to_string(t);
+      b += "\n$dumpvars\n";
+      for (size_t i = 0; i < columns_.size(); ++i) {
+        last_[i] = key(i, values[i]);
+        appendValue(b, i, values[i]);
+      }
+      b += "$end\n";
+      first_ = false;
+    } else {
+      bool stamped = false;
+      for (size_t i = 0; i < columns_.size(); ++i) {
+        uint64_t k = key(i, values[i]);
+        if (k == last_[i]) continue;
+        last_[i] = k;
+        if (!stamped) {
+          b += '#';
+          b += std::to_string(t);
+          b += '\n';
+          stamped = true;
+        }
+        appendValue(b, i, values[i]);
+      }
+    }
+    out_->flushIfBig();
+  }
+
+  bool finish(std::string& error) override { return out_->close(error); }
+
+private:
+  // Base-94 over the printable characters '!'..'~'.
+  static std::string identifier(size_t i) {
+    std::string id;
+    do {
+      id.push_back(static_cast<char>(33 + i % 94));
+      i /= 94;
+    } while (i-- > 0);
+    return id;
+  }
+
+  uint64_t mask(size_t i) const {
+    unsigned bits = columns_[i].bits;
+    return bits >= 64 ? ~uint64_t(0) : (uint64_t(1) << bits) - 1;
+  }
+
+  // What decides "changed": the masked bits, or the double's bit pattern (so
+  // a NaN equals itself and -0.0 differs from 0.0).
+  uint64_t key(size_t i, const TraceValue& v) const {
+    if (columns_[i].kind != TraceColumn::Real) return v.bits & mask(i);
+    uint64_t k;
+    std::memcpy(&k, &v.real, sizeof k);
+    return k;
+  }
+
+  void appendValue(std::string& b, size_t i, const TraceValue& v) const {
+    const TraceColumn& c = columns_[i];
+    if (c.kind == TraceColumn::Bool) {
+      b += (v.bits & 1) ? '1' : '0';
+    } else if (c.kind == TraceColumn::Real) {
+      char buf[32];
+      auto r = std::to_chars(buf, buf + sizeof buf, v.real, std::chars_format::general, 17);
+      b += 'r';
+      b.append(buf, r.ptr);
+      b += ' ';
+    } else {
+      uint64_t x = v.bits & mask(i);
+      b += 'b';
+      int top = x ? 63 - __builtin_clzll(x) : 0;
+      for (int bit = top; bit >= 0; --bit) b += ((x >> bit) & 1) ? '1' : '0';
+      b += ' ';
+    }
+    b += ids_[i];
+    b += '\n';
+  }
+
+  std::unique_ptr<Output> out_;
+  std::vector<TraceColumn> columns_;
+  std::vector<std::string> ids_;
+  std::vector<uint64_t> last_;
+  bool first_ = true;
+};
+
+bool endsWithIgnoreCase(const std::string& s, std::string_view suffix) {
+  if (s.size() < suffix.size()) return false;
+  for (size_t i = 0; i < suffix.size(); ++i) {
+    char c = s[s.size() - suffix.size() + i];
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    if (c != suffix[i]) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::unique_ptr<TraceWriter> TraceWriter::create(const std::string& path, std::vector<TraceColumn> columns,
+                                                 std::string& error) {
+  bool csv = endsWithIgnoreCase(path, ".csv");
+  bool vcd = endsWithIgnoreCase(path, ".vcd");
+  if (!csv && !vcd) {
+    error = "trace file '" + path + "' must end in .csv or .vcd";
+    return nullptr;
+  }
+  if (vcd)
+    for (const TraceColumn& c : columns)
+      if (c.kind == TraceColumn::Text) {
+        error = "'" + c.name + "' cannot be traced to a VCD file: only BOOL, numbers and times can";
+        return nullptr;
+      }
+  auto out = std::make_unique<Output>();
+  if (!out->open(path, error)) return nullptr;
+  if (csv) return std::make_unique<CsvWriter>(std::move(out), std::move(columns));
+  return std::make_unique<VcdWriter>(std::move(out), std::move(columns));
+}
+
+}  // namespace stc::vm
