@@ -1,16 +1,30 @@
 #include "vm/Controller.h"
 
+#include <csignal>
 #include <cstring>
+#include <functional>
+#include <map>
 #include <ostream>
 
+#include "ast/AST.h"
 #include "sema/Model.h"
 #include "vm/Image.h"
 #include "vm/Jit.h"
+#include "vm/Retain.h"
 #include "vm/Runtime.h"
 #include "vm/Scheduler.h"
 #include "vm/Trace.h"
 
 namespace stc::vm {
+
+namespace {
+// SIGINT/SIGTERM stop the run at the next tick boundary, so the retain file
+// is saved and the watches are printed.
+Scheduler* gStopTarget = nullptr;
+extern "C" void onStopSignal(int) {
+  if (gStopTarget) gStopTarget->requestStop();
+}
+}  // namespace
 
 Controller::Controller(const sema::Model& model, DiagnosticsEngine& diags) : model_(model), diags_(diags) {}
 Controller::~Controller() = default;
@@ -89,6 +103,7 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
       return 2;
     }
   }
+  if (!opts.retainFile.empty()) restoreRetain(opts.retainFile, opts.cold, err);
   SchedulerOptions so;
   so.measure = opts.stats;
   so.realtime = opts.realtime;
@@ -115,7 +130,7 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   }
   if (trace) {
     TraceWriter* tw = trace.get();
-    sched_->setTickCallback([this, tw, &traced, &layout](Time now) {
+    tickFn_ = [this, tw, &traced, &layout](Time now) {
       std::vector<TraceValue> values(traced.size());
       for (size_t k = 0; k < traced.size(); ++k) {
         const uint8_t* p = image_ + traced[k].offset;
@@ -132,13 +147,42 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
         }
       }
       tw->sample(now, values);
+    };
+    sched_->setTickCallback(tickFn_);
+  }
+  std::string retainError;
+  if (!opts.retainFile.empty() && opts.retainEvery && *opts.retainEvery > 0) {
+    // Periodic saves at tick boundaries: a killed process loses at most one period.
+    Time every = *opts.retainEvery;
+    auto next = std::make_shared<Time>(every);
+    sched_->addTickPeriod(every);
+    const std::string file = opts.retainFile;
+    sched_->setTickCallback([this, next, every, file, tick = std::move(tickFn_)](Time now) {
+      if (tick) tick(now);
+      if (now + sched_->baseTick() >= *next) {
+        std::string e;
+        saveRetain(file, e);
+        *next += every;
+      }
     });
   }
   RunLimit limit;
   limit.cycles = opts.cycles;
   limit.until = opts.duration;
   if (!limit.cycles && !limit.until) limit.cycles = 1;
+  gStopTarget = sched_.get();
+  struct sigaction sa {};
+  sa.sa_handler = onStopSignal;
+  sigemptyset(&sa.sa_mask);
+  struct sigaction oldInt {}, oldTerm {};
+  sigaction(SIGINT, &sa, &oldInt);
+  sigaction(SIGTERM, &sa, &oldTerm);
   sched_->run(limit);
+  sigaction(SIGINT, &oldInt, nullptr);
+  sigaction(SIGTERM, &oldTerm, nullptr);
+  gStopTarget = nullptr;
+  if (!opts.retainFile.empty() && !saveRetain(opts.retainFile, retainError))
+    err << "stc: error: cannot save retain file: " << retainError << "\n";
   if (trace) {
     std::string e;
     if (!trace->finish(e)) err << "stc: error: " << e << "\n";
@@ -159,6 +203,67 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   }
   reportFaults(err);
   return sched_->faults().empty() ? 0 : 3;
+}
+
+std::vector<Controller::RetainRegion> Controller::retainRegions() const {
+  std::vector<RetainRegion> out;
+  const sema::Layout& layout = *model_.layout;
+  std::function<void(const std::string&, uint64_t, const sema::Type*, int)> walk = [&](const std::string& path, uint64_t off,
+                                                                                      const sema::Type* t, int depth) {
+    if (depth > 16) return;
+    const sema::Type* u = t->underlying();
+    if (!(u->kind == sema::TypeKind::FunctionBlock || u->kind == sema::TypeKind::Program || u->kind == sema::TypeKind::Struct)) return;
+    for (const sema::FieldLayout& f : layout.of(u).fields) {
+      if (!f.type || f.indirect) continue;
+      std::string p = path + "." + f.name;
+      if (f.decl && (f.decl->isRetain || f.decl->isPersistent)) out.push_back({p, off + f.offset, f.type, f.decl->isPersistent});
+      else walk(p, off + f.offset, f.type, depth + 1);
+    }
+  };
+  for (const codegen::ImageRoot& r : module_->image.roots) {
+    if (r.alias || r.constant) continue;
+    if (r.retain || r.persistent) out.push_back({r.path, r.offset, r.type, r.persistent});
+    else walk(r.path, r.offset, r.type, 0);
+  }
+  return out;
+}
+
+bool Controller::saveRetain(const std::string& file, std::string& error) {
+  std::vector<RetainEntry> entries;
+  for (const RetainRegion& r : retainRegions()) {
+    RetainEntry e;
+    e.path = r.path;
+    e.signature = model_.layout->signature(r.type) + (r.persistent ? " PERSISTENT" : " RETAIN");
+    uint64_t n = model_.layout->sizeOf(r.type);
+    e.bytes.assign(image_ + r.offset, image_ + r.offset + n);
+    entries.push_back(std::move(e));
+  }
+  return saveRetainFile(file, entries, error);
+}
+
+void Controller::restoreRetain(const std::string& file, bool coldStart, std::ostream& err) {
+  std::vector<RetainEntry> entries;
+  std::string error;
+  RetainLoad r = loadRetainFile(file, entries, error);
+  if (r == RetainLoad::Missing) return;
+  if (r == RetainLoad::Corrupt) {
+    err << "stc: warning: retain file '" << file << "' is damaged (" << error << "); cold start\n";
+    return;
+  }
+  std::map<std::string, const RetainEntry*> byPath;
+  for (const RetainEntry& e : entries) byPath[e.path] = &e;
+  for (const RetainRegion& reg : retainRegions()) {
+    if (coldStart && !reg.persistent) continue;
+    auto it = byPath.find(reg.path);
+    if (it == byPath.end()) continue;
+    std::string sig = model_.layout->signature(reg.type) + (reg.persistent ? " PERSISTENT" : " RETAIN");
+    uint64_t n = model_.layout->sizeOf(reg.type);
+    if (it->second->signature != sig || it->second->bytes.size() != n) {
+      err << "stc: note: retained '" << reg.path << "' changed type; it starts from its initial value\n";
+      continue;
+    }
+    std::memcpy(image_ + reg.offset, it->second->bytes.data(), n);
+  }
 }
 
 void Controller::reportFaults(std::ostream&) {

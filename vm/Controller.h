@@ -4,6 +4,7 @@
 // writes traces.  See docs/vm.md.
 #pragma once
 
+#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -14,7 +15,7 @@
 #include "codegen/CodeGen.h"
 #include "vm/Time.h"
 
-namespace stc::sema { struct Model; }
+namespace stc::sema { struct Model; class Type; }
 
 namespace stc::vm {
 
@@ -32,6 +33,9 @@ struct RunOptions {
   std::string traceOut;
   std::optional<Time> watchdog;
   std::optional<int64_t> slice;
+  std::string retainFile;                // RETAIN/PERSISTENT variables: restored at start, saved at stop
+  std::optional<Time> retainEvery;       // also save every D of simulated time
+  bool cold = false;                     // restore PERSISTENT variables only
 };
 
 class Controller {
@@ -48,6 +52,12 @@ public:
   const codegen::ImageMap& imageMap() const { return module_->image; }
   Scheduler& scheduler() { return *sched_; }
 
+  // The retained regions of the image (RETAIN/PERSISTENT at any depth).
+  struct RetainRegion { std::string path; uint64_t offset; const sema::Type* type; bool persistent; };
+  std::vector<RetainRegion> retainRegions() const;
+  bool saveRetain(const std::string& file, std::string& error);
+  void restoreRetain(const std::string& file, bool coldStart, std::ostream& err);
+
 private:
   void reportFaults(std::ostream& err);
   const sema::Model& model_;
@@ -62,6 +72,7 @@ private:
     std::vector<void (*)()> entries;
   };
   std::vector<std::unique_ptr<TaskRuntime>> tasks_;
+  std::function<void(Time)> tickFn_;       // trace sampling
 };
 
 }  // namespace stc::vm

@@ -144,6 +144,7 @@ struct BuildArgs : CheckArgs {
   std::string interval;
   // run
   uint64_t cycles = 0;
+  bool cyclesGiven = false;
   std::string forDuration;
   std::vector<std::string> watches;
   std::vector<std::string> traces;
@@ -151,6 +152,9 @@ struct BuildArgs : CheckArgs {
   bool realtime = false;
   std::string watchdog;
   int64_t slice = 0;
+  std::string retain;
+  std::string retainEvery;
+  bool cold = false;
 };
 
 void printDiagnostics(Compilation& c, const CheckArgs& a) {
@@ -229,7 +233,7 @@ int runRun(const BuildArgs& a) {
   auto m = compile(c, a, true, status);
   if (!m) return status;
   vm::RunOptions ro;
-  if (a.cycles) ro.cycles = a.cycles;
+  if (a.cyclesGiven) ro.cycles = a.cycles;
   if (!a.forDuration.empty()) {
     int64_t ns = 0;
     if (!parseDuration(a.forDuration, ns) || ns < 0) {
@@ -247,6 +251,16 @@ int runRun(const BuildArgs& a) {
     ro.watchdog = ns;
   }
   if (a.slice > 0) ro.slice = a.slice;
+  ro.retainFile = a.retain;
+  ro.cold = a.cold;
+  if (!a.retainEvery.empty()) {
+    int64_t ns = 0;
+    if (!parseDuration(a.retainEvery, ns) || ns <= 0) {
+      std::cerr << "stc: error: --retain-every: '" << a.retainEvery << "' is not a duration\n";
+      return 2;
+    }
+    ro.retainEvery = ns;
+  }
   ro.realtime = a.realtime;
   ro.stats = a.stats;
   ro.watches = a.watches;
@@ -335,6 +349,9 @@ int main(int argc, char** argv) {
   run->add_flag("--stats", ra.stats, "Print per-task statistics");
   run->add_option("--watchdog", ra.watchdog, "Per-task watchdog (simulated time; 0 = off; default 1s)");
   run->add_option("--slice", ra.slice, "Loop back-edges a task may run per slot before it yields");
+  run->add_option("--retain", ra.retain, "Keep RETAIN/PERSISTENT variables in FILE across runs");
+  run->add_option("--retain-every", ra.retainEvery, "Also save the retain file every DUR of simulated time");
+  run->add_flag("--cold", ra.cold, "Cold start: restore only PERSISTENT variables");
 
   try {
     app.parse(argc, argv);
@@ -348,6 +365,7 @@ int main(int argc, char** argv) {
   }
   if (check->parsed()) return runCheck(ca);
   if (build->parsed()) return runBuild(ba);
+  ra.cyclesGiven = cyc->count() > 0;
   if (run->parsed()) return runRun(ra);
   return 2;
 }
