@@ -10,6 +10,7 @@
 #include "sema/Model.h"
 #include "vm/Image.h"
 #include "vm/Jit.h"
+#include "vm/Native.h"
 #include "vm/Retain.h"
 #include "vm/Runtime.h"
 #include "vm/Scheduler.h"
@@ -31,13 +32,21 @@ Controller::~Controller() = default;
 
 bool Controller::load(std::unique_ptr<codegen::CompiledModule> module, std::string& error) {
   module_ = std::move(module);
-  for (const std::string& n : module_->natives) {
-    // Natives are bound through the native API (docs/native-api.md); none
-    // is registered for this name.
-    error = "'" + n.substr(7) + "' is declared {attribute 'native'} but no native implementation is available in this build";
-    return false;
+  auto symbols = runtimeSymbols();
+  for (const codegen::CompiledModule::Native& n : module_->natives) {
+    const NativeEntry* e = nativeRegistry().find(n.name);
+    if (!e) {
+      error = "'" + n.name + "' is declared {attribute 'native'} but this build has no implementation of it";
+      return false;
+    }
+    if (e->hash != n.hash) {
+      error = "the native implementation of '" + n.name + "' was built for a different declaration (layout hash " + std::to_string(e->hash) +
+              ", the program has " + std::to_string(n.hash) + "); rebuild it from the current ST declaration";
+      return false;
+    }
+    symbols[n.symbol] = const_cast<void*>(e->address);
   }
-  jit_ = Jit::create(*module_, runtimeSymbols(), error);
+  jit_ = Jit::create(*module_, symbols, error);
   if (!jit_) return false;
   image_ = static_cast<uint8_t*>(jit_->lookup("__stc_image", error));
   if (!image_) return false;

@@ -213,7 +213,8 @@ llvm::Function* CodeGen::functionFor(Symbol* pou) {
       ++idx;
     }
   }
-  if (native) out_.natives.push_back(name);
+  if (native) out_.natives.push_back({name, pou->pou->owner ? pou->pou->owner->name + "." + pou->name : pou->name, layout_.pouHash(pou),
+                                      pou->declRange});
   functions_[pou] = f;
   return f;
 }

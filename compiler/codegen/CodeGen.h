@@ -77,7 +77,14 @@ public:
   ImageMap image;
   std::vector<Site> sites;                  // index = site id (0 unused)
   std::vector<TaskPlan> tasks;
-  std::vector<std::string> natives;         // external POU symbols the module calls (native bindings)
+  // POUs implemented in C++ (native bindings) that the module references.
+  struct Native {
+    std::string symbol;                     // "native.TON", "native.TEST_Sleep"
+    std::string name;                       // the ST name
+    uint64_t hash = 0;                      // Layout::pouHash of the ST declaration
+    SourceRange decl;
+  };
+  std::vector<Native> natives;
 
 private:
   std::unique_ptr<Impl> impl_;

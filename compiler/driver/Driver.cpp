@@ -68,6 +68,7 @@ bool Compilation::check(const CompileOptions& opts) {
   std::vector<uint32_t> all;
   if (opts.includeStdlib)
     for (size_t i = 0; i < kStdlibSourceCount; ++i) all.push_back(sm_.addBuffer(kStdlibSources[i].name, kStdlibSources[i].text));
+  for (const auto& [name, text] : opts.libraries) all.push_back(sm_.addBuffer(name, text));
   all.insert(all.end(), files_.begin(), files_.end());
 
   auto t0 = clock::now();

@@ -33,6 +33,8 @@ struct CompileOptions {
   std::optional<sema::Dialect> dialect;  // overrides the project's
   std::set<std::string> defines;         // lower-case
   bool includeStdlib = true;             // the IEC standard FB declarations
+  // Declarations of native libraries (name, ST text) compiled in before the inputs.
+  std::vector<std::pair<std::string, std::string>> libraries;
   unsigned parseThreads = 0;             // 0 = one per core
 };
 

@@ -156,13 +156,30 @@ std::string Layout::signature(const Type* t) const {
   }
 }
 
-uint64_t Layout::hash(const Type* t) const {
+static uint64_t fnv1a(const std::string& s) {
   uint64_t h = 1469598103934665603ull;
-  for (char c : signature(t)) {
+  for (char c : s) {
     h ^= static_cast<unsigned char>(asciiUpper(c));
     h *= 1099511628211ull;
   }
   return h;
 }
+
+uint64_t Layout::hash(const Type* t) const { return fnv1a(signature(t)); }
+
+std::string Layout::pouSignature(const Symbol* pou) const {
+  if (!pou || !pou->pou) return "?";
+  if (pou->kind == Symbol::FunctionBlock || pou->kind == Symbol::Program) return "FB " + signature(pou->type);
+  std::string s = (pou->kind == Symbol::Method ? "METHOD " : "FUNCTION ") + pou->name + "(";
+  for (const Symbol* p : pou->pou->params) {
+    const char* sec = p->var->section == ast::VarSection::Input ? "IN " : p->var->section == ast::VarSection::Output ? "OUT " : "INOUT ";
+    s += sec + signature(p->type) + ";";
+  }
+  s += ")";
+  if (pou->pou->returnType) s += ":" + signature(pou->pou->returnType);
+  return s;
+}
+
+uint64_t Layout::pouHash(const Symbol* pou) const { return fnv1a(pouSignature(pou)); }
 
 }  // namespace stc::sema

@@ -17,6 +17,8 @@ namespace stc::ast { struct VarDecl; }
 
 namespace stc::sema {
 
+struct Symbol;
+
 struct FieldLayout {
   std::string name;                     // declared spelling
   const Type* type = nullptr;           // the declared type (VAR_IN_OUT: the parameter type; stored as a pointer)
@@ -44,6 +46,11 @@ public:
   uint64_t hash(const Type* t) const;
   // A readable description of the layout-relevant shape (retain files).
   std::string signature(const Type* t) const;
+
+  // The ABI-relevant shape of a FUNCTION, METHOD or FUNCTION_BLOCK (the
+  // native binding check compares these): parameters, result, instance layout.
+  std::string pouSignature(const Symbol* pou) const;
+  uint64_t pouHash(const Symbol* pou) const;
 
   // Which POU variables are fields of an instance (FB, program).
   static bool isInstanceField(const ast::VarDecl* v);

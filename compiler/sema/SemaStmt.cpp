@@ -38,7 +38,9 @@ void SemaImpl::checkBody(Symbol* pou) {
   for (JmpStmt* j : st.jumps)
     if (!st.labels.count(upperCase(j->target.name)))
       diags_.error(j->target.range.begin, "use of undeclared label '" + j->target.name + "'", "undeclared-label").range(j->target.range);
-  if (st.resultVar && !st.resultAssigned && d->pouKind != PouKind::PropertySet && !d->isAbstract && !pi.returnType->isError()) {
+  bool native = false;   // implemented in C++: the ST body is only a declaration
+  for (const Pragma& p : d->attributes) native = native || upperCase(p.name) == "NATIVE";
+  if (st.resultVar && !st.resultAssigned && !native && d->pouKind != PouKind::PropertySet && !d->isAbstract && !pi.returnType->isError()) {
     const char* what = d->pouKind == PouKind::PropertyGet ? "GET accessor of property" : pou->kind == Symbol::Function ? "function" : "method";
     SourceRange at = d->endRange.valid() ? d->endRange : d->name.range;
     diags_.warning(at.begin, std::string(what) + " '" + st.resultVar->name + "' never assigns its return value; it returns the default value of '" +

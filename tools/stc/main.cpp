@@ -13,6 +13,7 @@
 #include "driver/Driver.h"
 #include "sema/Model.h"
 #include "vm/Controller.h"
+#include "vm/testlib/TestLib.h"
 
 using namespace stc;
 
@@ -155,6 +156,7 @@ struct BuildArgs : CheckArgs {
   std::string retain;
   std::string retainEvery;
   bool cold = false;
+  bool testlib = false;
 };
 
 void printDiagnostics(Compilation& c, const CheckArgs& a) {
@@ -168,7 +170,9 @@ std::unique_ptr<codegen::CompiledModule> compile(Compilation& c, const BuildArgs
   bool inputsOk = true;
   for (const std::string& p : a.paths) inputsOk = c.addPath(p) && inputsOk;
   bool ok = false;
-  if (inputsOk) runWithLargeStack([&] { ok = c.check(compileOptions(a)); });
+  CompileOptions co = compileOptions(a);
+  if (a.testlib) co.libraries.push_back({"<testlib>", vm::registerTestLib()});
+  if (inputsOk) runWithLargeStack([&] { ok = c.check(co); });
   status = 1;
   if (!ok || !inputsOk || !c.model()) {
     printDiagnostics(c, a);
@@ -302,6 +306,7 @@ void addCompileOptions(CLI::App* cmd, BuildArgs& a) {
   cmd->add_flag("-g", a.debug, "Emit debug information");
   cmd->add_option("--color", a.color, "Colour diagnostics")->check(CLI::IsMember({"auto", "always", "never"}));
   cmd->add_flag("-w,--no-warnings", a.noWarnings, "Suppress all warnings");
+  cmd->add_flag("--testlib", a.testlib, "Compile in the controller's test natives (TEST_Sleep, TEST_Counter, ...)")->group("");
 }
 
 }  // namespace

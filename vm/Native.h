@@ -1,0 +1,56 @@
+// The native binding API: C++ implementations of POUs declared in ST.
+//
+// One declaration is the source of truth: the ST file declares the FUNCTION
+// or FUNCTION_BLOCK with {attribute 'native'} (and {attribute 'blocking'}
+// when it may wait).  stc_bindgen turns that declaration into a C++ header
+// with the instance struct, static_asserts on every offset and the size, the
+// function type and the declaration's hash.  The implementation registers
+// itself with that hash; at load the controller compares it with the hash of
+// the declaration the program was compiled against, so a stale build is a
+// load error, never memory corruption.  See docs/native-api.md.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vm/Time.h"
+
+namespace stc::vm {
+
+struct NativeEntry {
+  std::string name;            // ST name, as declared (FB, FUNCTION, or FB.METHOD)
+  const void* address;         // the C function with the ST calling convention
+  uint64_t hash;               // Layout::pouHash of the declaration it was built for
+};
+
+struct NativeLibrary {
+  std::string name;            // shown in diagnostics, e.g. "<testlib>"
+  std::string source;          // ST declarations
+};
+
+class NativeRegistry {
+public:
+  void add(NativeEntry e) { entries_.push_back(std::move(e)); }
+  void addLibrary(NativeLibrary lib) { libraries_.push_back(std::move(lib)); }
+  const NativeEntry* find(std::string_view name) const;
+  const std::vector<NativeLibrary>& libraries() const { return libraries_; }
+
+private:
+  std::vector<NativeEntry> entries_;
+  std::vector<NativeLibrary> libraries_;
+};
+
+NativeRegistry& nativeRegistry();
+
+// For natives declared {attribute 'blocking'}: suspend the calling task
+// (its fiber) while the rest of the controller goes on.  A blocking native
+// must not hold objects with destructors across these calls: a task that is
+// stopped by a fault is abandoned, not unwound.
+void sleepFor(Time d);
+void waitUntil(std::function<bool()> ready);
+Time now();
+
+}  // namespace stc::vm
