@@ -34,6 +34,10 @@ size_t length(const C* s) {
 
 extern "C" {
 
+// libgcc's helpers for llvm.powi.
+double __powidf2(double, int);
+float __powisf2(float, int);
+
 [[noreturn]] void __stc_fault(uint32_t site, uint32_t kind) {
   auto k = static_cast<FaultKind>(kind);
   const char* msg = "runtime fault";
@@ -137,6 +141,10 @@ std::map<std::string, void*> runtimeSymbols() {
   m["powf"] = reinterpret_cast<void*>(static_cast<F2>(&::powf));
   m["atan2"] = reinterpret_cast<void*>(static_cast<D2>(&::atan2));
   m["atan2f"] = reinterpret_cast<void*>(static_cast<F2>(&::atan2f));
+  m["sincos"] = reinterpret_cast<void*>(static_cast<void (*)(double, double*, double*)>(&::sincos));
+  m["sincosf"] = reinterpret_cast<void*>(static_cast<void (*)(float, float*, float*)>(&::sincosf));
+  m["__powidf2"] = reinterpret_cast<void*>(&__powidf2);
+  m["__powisf2"] = reinterpret_cast<void*>(&__powisf2);
   m["fmod"] = reinterpret_cast<void*>(static_cast<D2>(&::fmod));
   m["fmodf"] = reinterpret_cast<void*>(static_cast<F2>(&::fmodf));
   return m;

@@ -187,7 +187,8 @@ llvm::Function* CodeGen::functionFor(Symbol* pou) {
   else name += pou->pou->owner ? pou->name : qualifiedName(pou);
   bool native = isNative(pou);
   bool hasBody = d && d->hasBody && !d->isAbstract;
-  auto linkage = (native || !hasBody) ? llvm::Function::ExternalLinkage : llvm::Function::InternalLinkage;
+  bool exported = opts_.exportFunctions && pou->kind == Symbol::Function;
+  auto linkage = (native || !hasBody || exported) ? llvm::Function::ExternalLinkage : llvm::Function::InternalLinkage;
   if (native) name = "native." + name.substr(3);
   llvm::Function* f = llvm::Function::Create(signatureOf(pou), linkage, name, mod_);
   // Small integer parameters follow the System V convention (what C++ natives expect).

@@ -23,6 +23,9 @@ struct CodegenOptions {
   // Programs to run when there is no CONFIGURATION (stc run --program); empty: automatic.
   std::vector<std::string> programs;
   int64_t defaultIntervalNs = 1'000'000;
+  // Give FUNCTIONs external linkage ("st.<Name>") so a host can call them
+  // (benchmarks, embedding).  Off: everything internal, for inlining.
+  bool exportFunctions = false;
 };
 
 // Where a runtime fault can happen: each check and safepoint has one.
