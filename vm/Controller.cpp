@@ -278,10 +278,14 @@ void Controller::restoreRetain(const std::string& file, bool coldStart, std::ost
 void Controller::reportFaults(std::ostream&) {
   for (const TaskFault& f : sched_->faults()) {
     const codegen::Site* site = f.info.site < module_->sites.size() ? &module_->sites[f.info.site] : nullptr;
-    std::string msg = "runtime fault in task '" + sched_->task(f.task).name + "', cycle " + std::to_string(f.cycle) + " (" +
-                      formatIecTime(f.now) + "): " + f.info.message;
+    std::string prefix = "runtime fault in task '" + sched_->task(f.task).name + "', cycle " + std::to_string(f.cycle) + " (" +
+                         formatIecTime(f.now) + "): ";
+    std::string msg = prefix + f.info.message;
     if (site && !site->detail.empty() && f.info.code == "fault-index") msg += " of '" + site->detail + "'";
-    if (site && site->range.begin.valid()) diags_.error(site->range.begin, msg, f.info.code.c_str()).range(site->range);
+    if (site && site->detail == "MOD" && f.info.code == "fault-division-by-zero") msg = prefix + "MOD by zero";
+    if (site && !site->detail.empty() && f.info.code == "fault-unbound-in-out") msg = prefix + "VAR_IN_OUT " + site->detail + " is not bound";
+    SourceLoc at = site && site->loc.valid() ? site->loc : site ? site->range.begin : SourceLoc{};
+    if (site && at.valid()) diags_.error(at, msg, f.info.code.c_str()).range(site->range);
     else diags_.error(SourceLoc{}, msg, f.info.code.c_str());
   }
 }

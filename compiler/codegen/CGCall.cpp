@@ -20,6 +20,10 @@ bool isValueInstance(const Expr* e) {
   // A receiver that is an instance itself (not reached through a pointer,
   // reference or VAR_IN_OUT) has a known dynamic type.
   if (isa<DerefExpr>(e)) return false;
+  const sema::Symbol* s = nullptr;
+  if (auto* n = dyn_cast<NameExpr>(e)) s = n->symbol;
+  else if (auto* m = dyn_cast<MemberExpr>(e)) s = m->symbol;
+  if (s && s->var && (s->var->section == VarSection::InOut || (s->type && s->type->isReference()))) return false;
   return true;
 }
 }  // namespace
@@ -185,7 +189,10 @@ void CodeGen::callInstance(const CallExpr* e, Symbol* fbSym, llvm::Value* inst) 
     }
   }
   llvm::Function* body = functionFor(fbSym);
-  bool virt = fbSym->kind == Symbol::FunctionBlock && isa<DerefExpr>(e->callee);
+  // SUPER^() runs the base body itself; other calls through pointers,
+  // references and in-outs run the body of the instance's own type.
+  bool viaSuper = isa<DerefExpr>(e->callee) && isa<SuperExpr>(cast<DerefExpr>(e->callee)->base);
+  bool virt = fbSym->kind == Symbol::FunctionBlock && !viaSuper && !isValueInstance(e->callee);
   if (virt) {
     llvm::Value* vptr = b_.CreateAlignedLoad(ptrTy_, inst, llvm::MaybeAlign(8));
     llvm::Value* fp = b_.CreateAlignedLoad(ptrTy_, b_.CreateConstInBoundsGEP1_64(ptrTy_, vptr, 1), llvm::MaybeAlign(8));
@@ -294,6 +301,30 @@ llvm::Value* CodeGen::arg(const CallExpr* e, size_t i, const Type* to) {
   return emitValue(a, to);
 }
 
+// <T>_TO_STRING: decimal integers, shortest REAL, TRUE/FALSE, T#... .
+llvm::Value* CodeGen::toStringValue(const Expr* a, const Type* rt) {
+  const Type* at = strip(a->type);
+  Address tmp = temporary(rt, "str");
+  llvm::Value* cap = b_.getInt64(strip(rt)->length);
+  llvm::Type* v = llvm::Type::getVoidTy(ctx_);
+  llvm::Value* x = emitValue(a, nullptr);
+  if (at->isBool()) {
+    b_.CreateCall(runtime("__stc_bool_to_str", v, {ptrTy_, i64_, i32_}), {tmp.ptr, cap, b_.CreateZExt(x, i32_)});
+  } else if (at->isReal()) {
+    b_.CreateCall(runtime("__stc_real_to_str", v, {ptrTy_, i64_, llvm::Type::getDoubleTy(ctx_), i32_}),
+                  {tmp.ptr, cap, b_.CreateFPExt(x, llvm::Type::getDoubleTy(ctx_)), b_.getInt32(at->kind == TypeKind::Real)});
+  } else if (at->isDuration()) {
+    b_.CreateCall(runtime("__stc_time_to_str", v, {ptrTy_, i64_, i64_, i32_}), {tmp.ptr, cap, x, b_.getInt32(at->kind == TypeKind::LTime)});
+  } else if (at->isInteger() || at->isBitString() || at->isChar()) {
+    bool sgn = at->isSignedInt();
+    b_.CreateCall(runtime("__stc_int_to_str", v, {ptrTy_, i64_, i64_, i32_}),
+                  {tmp.ptr, cap, sgn ? b_.CreateSExt(x, i64_) : b_.CreateZExtOrBitCast(x, i64_), b_.getInt32(sgn)});
+  } else {
+    error(a->range, "conversion of '" + at->name + "' to STRING is not implemented yet (see docs/status.md)");
+  }
+  return tmp.ptr;
+}
+
 llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
   Symbol* t = e->target;
   int fam = sema::builtinFamily(t);
@@ -311,11 +342,48 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
   switch (fam) {
     case sema::FConvert: case sema::FToGeneric: case sema::FMove: {
       const Expr* a = argExpr(0);
-      if (!a || isAggregate(rt) || isAggregate(a->type)) {
-        if (fam == sema::FMove && a && isAggregate(rt)) return emitValue(a, nullptr);
+      if (!a) return unsupported();
+      const Type* at = strip(a->type);
+      const Type* st = strip(rt);
+      if (st->kind == TypeKind::String && !isAggregate(at)) return toStringValue(a, rt);
+      if (at->kind == TypeKind::String && !isAggregate(st)) {
+        llvm::Value* p = emitValue(a, nullptr);
+        if (st->isReal()) return convert(b_.CreateCall(runtime("__stc_str_to_real", llvm::Type::getDoubleTy(ctx_), {ptrTy_}), {p}), elementary(TypeKind::LReal), rt, e);
+        if (st->isInteger() || st->isBitString())
+          return b_.CreateTrunc(b_.CreateCall(runtime("__stc_str_to_int", i64_, {ptrTy_}), {p}), valueType(rt));
+        return unsupported();
+      }
+      if (isAggregate(rt) || isAggregate(a->type)) {
+        if (a && isAggregate(rt) && strip(a->type)->kind == st->kind) return emitValue(a, nullptr);
         return unsupported();
       }
       return emitValue(a, rt);
+    }
+    case sema::FLeftRight: case sema::FMid: case sema::FInsert: case sema::FDelete: case sema::FReplace: {
+      const Type* st = strip(rt);
+      if (st->kind != TypeKind::String) return unsupported();
+      std::string up = asciiUpper(name);
+      Address tmp = temporary(rt, "str");
+      llvm::Value* cap = b_.getInt64(st->length);
+      auto s0 = [&](size_t i) { return emitValue(argExpr(i), nullptr); };
+      auto n0 = [&](size_t i) { return emitValue(argExpr(i), elementary(TypeKind::LInt)); };
+      llvm::Type* v = llvm::Type::getVoidTy(ctx_);
+      if (up == "LEFT" || up == "RIGHT")
+        b_.CreateCall(runtime(up == "LEFT" ? "__stc_str_left" : "__stc_str_right", v, {ptrTy_, i64_, ptrTy_, i64_}), {tmp.ptr, cap, s0(0), n0(1)});
+      else if (up == "MID")
+        b_.CreateCall(runtime("__stc_str_mid", v, {ptrTy_, i64_, ptrTy_, i64_, i64_}), {tmp.ptr, cap, s0(0), n0(1), n0(2)});
+      else if (up == "INSERT")
+        b_.CreateCall(runtime("__stc_str_insert", v, {ptrTy_, i64_, ptrTy_, ptrTy_, i64_}), {tmp.ptr, cap, s0(0), s0(1), n0(2)});
+      else if (up == "DELETE")
+        b_.CreateCall(runtime("__stc_str_delete", v, {ptrTy_, i64_, ptrTy_, i64_, i64_}), {tmp.ptr, cap, s0(0), n0(1), n0(2)});
+      else
+        b_.CreateCall(runtime("__stc_str_replace", v, {ptrTy_, i64_, ptrTy_, ptrTy_, i64_, i64_}), {tmp.ptr, cap, s0(0), s0(1), n0(2), n0(3)});
+      return tmp.ptr;
+    }
+    case sema::FFind: {
+      if (strip(argExpr(0)->type)->kind != TypeKind::String) return unsupported();
+      llvm::Value* r = b_.CreateCall(runtime("__stc_str_find", i64_, {ptrTy_, ptrTy_}), {emitValue(argExpr(0), nullptr), emitValue(argExpr(1), nullptr)});
+      return b_.CreateTrunc(r, valueType(rt));
     }
     case sema::FTrunc: {
       llvm::Value* v = arg(e, 0, nullptr);

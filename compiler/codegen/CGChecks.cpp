@@ -62,7 +62,15 @@ void CodeGen::checkIndex(llvm::Value* idx, int64_t lo, int64_t hi, uint32_t s) {
 llvm::Value* CodeGen::checkedDivisor(llvm::Value* d, const ast::Node* at) {
   llvm::Value* nz = b_.CreateICmpNE(d, llvm::ConstantInt::get(d->getType(), 0));
   if (opts_.checks) {
-    check(nz, FaultKind::DivisionByZero, site(at));
+    uint32_t s;
+    if (auto* b = dynamic_cast<const ast::BinaryExpr*>(at)) {
+      // Point at the operator, as the compile-time check does.
+      s = site(b->range, b->op == ast::BinaryOp::Mod ? "MOD" : "");
+      out_.sites[s].loc = b->opLoc;
+    } else {
+      s = site(at);
+    }
+    check(nz, FaultKind::DivisionByZero, s);
     return d;
   }
   // Without checks a zero divisor must still not raise SIGFPE: divide by 1.

@@ -139,7 +139,7 @@ llvm::Value* CodeGen::constantValue(const LiteralExpr* lit, const Type* t) {
   llvm::Type* vt = valueType(s);
   switch (lit->litKind) {
     case LiteralExpr::Real:
-      if (vt->isFloatingPointTy()) return llvm::ConstantFP::get(vt, lit->negative ? -lit->realValue : lit->realValue);
+      if (vt->isFloatingPointTy()) return llvm::ConstantFP::get(vt, lit->realValue);   // the parser already applied the sign
       return llvm::ConstantFP::get(llvm::Type::getDoubleTy(ctx_), lit->realValue);
     case LiteralExpr::Bool:
       if (vt == i1_) return llvm::ConstantInt::get(i1_, lit->intValue != 0);
@@ -208,7 +208,10 @@ Address CodeGen::varAddr(const Symbol* s, const Expr* at) {
       if (f->indirect) {
         // VAR_IN_OUT of an FB: the field holds the bound variable's address.
         llvm::Value* bound = b_.CreateAlignedLoad(ptrTy_, p, llvm::MaybeAlign(8));
-        return Address{nullChecked(bound, FaultKind::UnboundInOut, at), f->type};
+        if (opts_.checks)
+          check(b_.CreateIsNotNull(bound), FaultKind::UnboundInOut,
+                site(at ? at->range : SourceRange{}, "'" + s->name + "' of '" + fs_->selfType->name + "'"));
+        return Address{bound, f->type};
       }
       a = Address{p, f->type};
     }
@@ -284,7 +287,8 @@ Address CodeGen::emitAddr(const Expr* e) {
       llvm::Value* p = b_.CreateConstInBoundsGEP1_64(i8_, base, f->offset);
       if (f->indirect) {
         llvm::Value* bound = b_.CreateAlignedLoad(ptrTy_, p, llvm::MaybeAlign(8));
-        return Address{nullChecked(bound, FaultKind::UnboundInOut, e), f->type};
+        if (opts_.checks) check(b_.CreateIsNotNull(bound), FaultKind::UnboundInOut, site(e->range, "'" + f->name + "' of '" + bt->name + "'"));
+        return Address{bound, f->type};
       }
       Address a{p, f->type};
       if (f->type && f->type->isReference()) {
@@ -316,10 +320,8 @@ Address CodeGen::emitAddr(const Expr* e) {
         strides[k] = acc;
         acc *= static_cast<uint64_t>(bt->dims[k].hi - bt->dims[k].lo + 1);
       }
-      if (ix->indices.size() != bt->dims.size()) {
-        error(e->range, "an array of " + std::to_string(bt->dims.size()) + " dimensions needs " + std::to_string(bt->dims.size()) + " indices here");
-        break;
-      }
+      // a[i][j] on a 2-D array: a[i] is the row, an array of the rest.
+      bool partial = ix->indices.size() < bt->dims.size();
       std::string arrName;
       if (auto* n = dyn_cast<NameExpr>(ix->base)) arrName = n->ident.name;
       else if (auto* mm = dyn_cast<MemberExpr>(ix->base)) arrName = mm->member.name;
@@ -330,7 +332,7 @@ Address CodeGen::emitAddr(const Expr* e) {
         llvm::Value* rel = b_.CreateSub(i, b_.getInt64(static_cast<uint64_t>(d.lo)));
         offset = b_.CreateAdd(offset, b_.CreateMul(rel, b_.getInt64(strides[k])));
       }
-      return Address{b_.CreateInBoundsGEP(i8_, base.ptr, offset), bt->element};
+      return Address{b_.CreateInBoundsGEP(i8_, base.ptr, offset), partial ? e->type : bt->element};
     }
     case Expr::Deref: {
       auto* d = cast<DerefExpr>(e);
@@ -365,6 +367,15 @@ Address CodeGen::emitAddr(const Expr* e) {
 // ------------------------------------------------------------------ values
 
 llvm::Value* CodeGen::emitValue(const Expr* e, const Type* to) {
+  // 'A' as a CHAR / "A" as a WCHAR: the character, not the string.
+  if (auto* lit = dyn_cast<LiteralExpr>(e); lit && to && strip(to)->isChar() &&
+                                           (lit->litKind == LiteralExpr::String || lit->litKind == LiteralExpr::WString)) {
+    bool wide = strip(to)->kind == TypeKind::WChar;
+    std::string bytes = literalBytes(lit, wide);
+    uint64_t v = bytes.empty() ? 0 : static_cast<unsigned char>(bytes[0]);
+    if (wide && bytes.size() >= 2) v |= static_cast<uint64_t>(static_cast<unsigned char>(bytes[1])) << 8;
+    return llvm::ConstantInt::get(valueType(to), v);
+  }
   llvm::Value* v = emitRaw(e);
   if (!to || !e->type) return v;
   if (auto* lit = dyn_cast<LiteralExpr>(e); lit && !isAggregate(to) && lit->litKind != LiteralExpr::String && lit->litKind != LiteralExpr::WString) {

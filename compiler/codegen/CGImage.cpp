@@ -310,7 +310,11 @@ void CodeGen::defaultObject(ConstBuffer& buf, uint64_t off, const Type* t, std::
   if (!t) return;
   switch (t->kind) {
     case TypeKind::Enum:
-      if (t->decl && t->decl->init) { initObject(buf, off, t, t->decl->init, dyn); return; }
+      if (t->decl && t->decl->init) {
+        llvm::Constant* c = nullptr;
+        if (foldScalar(t->decl->init, t, c)) writeScalar(buf, off, t, c);
+        return;
+      }
       if (!t->enumValues.empty()) buf.put(off, static_cast<uint64_t>(t->enumValues.front().second), static_cast<unsigned>(sizeOf(t)));
       return;
     case TypeKind::Subrange:
@@ -332,6 +336,12 @@ void CodeGen::defaultObject(ConstBuffer& buf, uint64_t off, const Type* t, std::
       return;
     }
     case TypeKind::Struct: case TypeKind::Union: case TypeKind::FunctionBlock: case TypeKind::Program: {
+      if (t->decl && t->decl->init && (t->kind == TypeKind::Struct || t->kind == TypeKind::Union) && !inTypeDefault_.count(t)) {
+        inTypeDefault_.insert(t);
+        initObject(buf, off, t, t->decl->init, dyn);
+        inTypeDefault_.erase(t);
+        return;
+      }
       const sema::TypeLayout& l = layout_.of(t);
       if (l.hasVptr) buf.relocs[off] = vtableFor(t);
       for (const sema::FieldLayout& f : l.fields) {

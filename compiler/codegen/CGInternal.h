@@ -70,6 +70,7 @@ struct FnState {
   std::map<std::string, llvm::BasicBlock*> labels;   // upper-case label -> block
   llvm::IRBuilder<>* allocaBuilder = nullptr;
   bool hasSafepoint = false;
+  llvm::AllocaInst* budget = nullptr;          // the function's copy of __stc_budget (a register after mem2reg)
 };
 
 class CodeGen {
@@ -138,6 +139,8 @@ public:
   void emitFor(const ast::ForStmt* s);
   void emitCase(const ast::CaseStmt* s);
   void safepoint(const ast::Node* at);
+  void syncBudgetAroundCalls(FnState& st);
+  llvm::AllocaInst* budgetSlot();     // the local budget meets the global one at calls and returns
   bool blockOpen() const;
   llvm::BasicBlock* newBlock(const char* name);
 
@@ -147,6 +150,7 @@ public:
   llvm::Value* callPou(const ast::CallExpr* e, Symbol* target, llvm::Value* self, bool virtualCall, llvm::Value* fnPtr = nullptr);
   void callInstance(const ast::CallExpr* e, Symbol* fbType, llvm::Value* inst);
   llvm::Value* emitBuiltin(const ast::CallExpr* e);
+  llvm::Value* toStringValue(const ast::Expr* arg, const Type* resultType);
   llvm::Value* arg(const ast::CallExpr* e, size_t i, const Type* to);
   llvm::Value* emitPropertyGet(const ast::Expr* e, Symbol* prop);
   void emitPropertySet(const ast::Expr* lhs, Symbol* prop, const ast::Expr* rhs);
@@ -195,6 +199,7 @@ public:
   int vtableSlot(const Type* fb, const std::string& key);
   static std::string slotKey(const Symbol* method);
   llvm::Function* foldFn_ = nullptr;
+  std::set<const Type*> inTypeDefault_;   // a type's own initialiser is being applied
   std::map<const Symbol*, llvm::Function*> functions_;
   std::map<const Symbol*, std::vector<Symbol*>> params_;
   std::map<const Type*, llvm::GlobalVariable*> vtables_;

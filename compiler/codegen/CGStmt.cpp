@@ -24,9 +24,12 @@ void CodeGen::emitStmts(const std::vector<Stmt*>& stmts) {
 // scheduler may suspend the task here (docs/vm.md, "Safepoints").
 void CodeGen::safepoint(const Node* at) {
   fs_->hasSafepoint = true;
-  llvm::Value* b = b_.CreateLoad(i64_, budget_);
+  // Loops count down a local copy of the budget (kept in a register); the
+  // copy meets the global at every call and return (syncBudgetAroundCalls).
+  llvm::AllocaInst* slot = budgetSlot();
+  llvm::Value* b = b_.CreateLoad(i64_, slot);
   llvm::Value* nb = b_.CreateSub(b, b_.getInt64(1));
-  b_.CreateStore(nb, budget_);
+  b_.CreateStore(nb, slot);
   auto* sp = newBlock("safepoint");
   auto* cont = newBlock("cont");
   llvm::MDBuilder md(ctx_);
@@ -35,6 +38,39 @@ void CodeGen::safepoint(const Node* at) {
   b_.CreateCall(runtime("__stc_safepoint", llvm::Type::getVoidTy(ctx_), {i32_}), {b_.getInt32(site(at))});
   b_.CreateBr(cont);
   b_.SetInsertPoint(cont);
+}
+
+llvm::AllocaInst* CodeGen::budgetSlot() {
+  if (!fs_->budget) {
+    fs_->budget = fs_->allocaBuilder->CreateAlloca(i64_, nullptr, "budget");
+    fs_->allocaBuilder->CreateStore(fs_->allocaBuilder->CreateLoad(i64_, budget_), fs_->budget);
+  }
+  return fs_->budget;
+}
+
+void CodeGen::syncBudgetAroundCalls(FnState& st) {
+  if (!st.budget) return;
+  std::vector<llvm::Instruction*> sites;
+  for (llvm::BasicBlock& bb : *st.fn)
+    for (llvm::Instruction& i : bb) {
+      if (auto* call = llvm::dyn_cast<llvm::CallInst>(&i)) {
+        llvm::Function* callee = call->getCalledFunction();
+        if (callee && (callee->isIntrinsic() || callee->doesNotReturn())) continue;
+        if (callee && callee->getName().starts_with("__stc_str")) continue;   // string helpers never suspend
+        if (callee && callee->getName().starts_with("__stc_wstr")) continue;
+        sites.push_back(call);
+      } else if (llvm::isa<llvm::ReturnInst>(&i)) {
+        sites.push_back(&i);
+      }
+    }
+  for (llvm::Instruction* i : sites) {
+    llvm::IRBuilder<> before(i);
+    before.CreateStore(before.CreateLoad(i64_, st.budget), budget_);
+    if (llvm::isa<llvm::CallInst>(i)) {
+      llvm::IRBuilder<> after(i->getNextNode());
+      after.CreateStore(after.CreateLoad(i64_, budget_), st.budget);
+    }
+  }
 }
 
 void CodeGen::emitStmt(const Stmt* s) {
@@ -270,21 +306,29 @@ void CodeGen::emitFor(const ForStmt* s) {
   llvm::Value* n = b_.CreateAdd(b_.CreateUDiv(span, mag), b_.getInt64(1));
   llvm::Value* count = b_.CreateSelect(b_.CreateSelect(up, ge, le), n, b_.getInt64(0));
   llvm::Type* narrow = valueType(st);
+  // Strip-mined: the outer loop takes a chunk of at most `budget`
+  // iterations, the inner loop is a plain counted loop (vectorisable, no
+  // safepoint), and the safepoint is checked once per chunk.
   auto* pre = b_.GetInsertBlock();
-  auto* head = newBlock("for.cond");
+  auto* outerHead = newBlock("for.chunk");
+  auto* outerBody = newBlock("for.chunk.begin");
+  auto* innerHead = newBlock("for.cond");
   auto* body = newBlock("for.body");
   auto* latch = newBlock("for.inc");
-  auto* exit = newBlock("for.end");
-  b_.CreateBr(head);
-  b_.SetInsertPoint(head);
-  auto* i = b_.CreatePHI(i64_, 2, "for.i");
-  i->addIncoming(b_.getInt64(0), pre);
-  b_.CreateCondBr(b_.CreateICmpULT(i, count), body, exit);
+  auto* outerLatch = newBlock("for.chunk.end");
+  auto* fin = newBlock("for.end");
+  auto* done = newBlock("for.done");
+  b_.CreateBr(outerHead);
+  b_.SetInsertPoint(outerHead);
+  auto* iOuter = b_.CreatePHI(i64_, 2, "for.base");
+  iOuter->addIncoming(b_.getInt64(0), pre);
+  llvm::Value* rem = b_.CreateSub(count, iOuter);
+  b_.CreateCondBr(b_.CreateICmpEQ(rem, b_.getInt64(0)), fin, outerBody);
+  b_.SetInsertPoint(innerHead);
+  auto* k = b_.CreatePHI(i64_, 2, "for.i");
   b_.SetInsertPoint(body);
-  store(var, b_.CreateTrunc(b_.CreateAdd(from, b_.CreateMul(i, by)), narrow));
-  fs_->loops.push_back({latch, exit});
-  size_t loopsBefore = 0;
-  (void)loopsBefore;
+  store(var, b_.CreateTrunc(b_.CreateAdd(from, b_.CreateMul(k, by)), narrow));
+  fs_->loops.push_back({latch, done});
   bool hadSafepoint = fs_->hasSafepoint;
   fs_->hasSafepoint = false;
   emitStmts(s->body);
@@ -293,18 +337,43 @@ void CodeGen::emitFor(const ForStmt* s) {
   fs_->loops.pop_back();
   if (blockOpen()) b_.CreateBr(latch);
   b_.SetInsertPoint(latch);
-  // A short constant loop without inner loops needs no safepoint.
+  llvm::Value* kNext = b_.CreateAdd(k, b_.getInt64(1));
+  b_.CreateBr(innerHead);
+  // A short constant loop without inner loops needs no safepoint at all.
   auto* cc = llvm::dyn_cast<llvm::ConstantInt>(count);
-  if (!(cc && cc->getZExtValue() <= 1024 && !innerSafepoint)) safepoint(s);
-  llvm::Value* next = b_.CreateAdd(i, b_.getInt64(1));
-  i->addIncoming(next, b_.GetInsertBlock());
-  b_.CreateBr(head);
-  b_.SetInsertPoint(exit);
-  // After normal completion (or EXIT) the variable keeps its last stored
-  // value; on completion it is from + count*by, as CODESYS shows.
-  auto* fin = newBlock("for.final");
-  auto* done = newBlock("for.done");
-  b_.CreateCondBr(b_.CreateICmpUGE(i, count), fin, done);
+  bool budgeted = !(cc && cc->getZExtValue() <= 1024 && !innerSafepoint);
+  b_.SetInsertPoint(outerBody);
+  llvm::Value* chunk = rem;
+  if (budgeted) {
+    fs_->hasSafepoint = true;
+    llvm::AllocaInst* budget = budgetSlot();
+    llvm::Value* bv = b_.CreateLoad(i64_, budget);
+    llvm::Value* atLeastOne = b_.CreateSelect(b_.CreateICmpSGT(bv, b_.getInt64(1)), bv, b_.getInt64(1));
+    chunk = b_.CreateSelect(b_.CreateICmpULT(rem, atLeastOne), rem, atLeastOne);
+    b_.CreateStore(b_.CreateSub(bv, chunk), budget);
+  }
+  llvm::Value* end = b_.CreateAdd(iOuter, chunk);
+  b_.CreateBr(innerHead);
+  k->addIncoming(iOuter, outerBody);
+  k->addIncoming(kNext, latch);
+  b_.SetInsertPoint(innerHead);
+  b_.CreateCondBr(b_.CreateICmpULT(k, end), body, outerLatch);
+  b_.SetInsertPoint(outerLatch);
+  if (budgeted) {
+    llvm::Value* bv = b_.CreateLoad(i64_, budgetSlot());
+    auto* sp = newBlock("safepoint");
+    auto* cont = newBlock("cont");
+    llvm::MDBuilder md(ctx_);
+    b_.CreateCondBr(b_.CreateICmpSLE(bv, b_.getInt64(0)), sp, cont, md.createUnlikelyBranchWeights());
+    b_.SetInsertPoint(sp);
+    b_.CreateCall(runtime("__stc_safepoint", llvm::Type::getVoidTy(ctx_), {i32_}), {b_.getInt32(site(s))});
+    b_.CreateBr(cont);
+    b_.SetInsertPoint(cont);
+  }
+  iOuter->addIncoming(end, b_.GetInsertBlock());
+  b_.CreateBr(outerHead);
+  // After normal completion the variable is from + count*by, as CODESYS
+  // shows; after EXIT it keeps the value of the last iteration.
   b_.SetInsertPoint(fin);
   store(var, b_.CreateTrunc(b_.CreateAdd(from, b_.CreateMul(count, by)), narrow));
   b_.CreateBr(done);

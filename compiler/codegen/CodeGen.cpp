@@ -125,7 +125,7 @@ static Symbol* propertyOf(Symbol* accessor) {
 
 const Type* CodeGen::returnTypeOf(Symbol* pou) {
   if (Symbol* prop = propertyOf(pou)) {
-    if (pou->pou->decl->pouKind == PouKind::PropertySet) return elementary(TypeKind::Void);
+    if (pou->pou->decl->pouKind == PouKind::PropertySet) return model_.types->voidType();
     return prop->pou->returnType ? prop->pou->returnType : prop->type;
   }
   return pou->pou->returnType;
@@ -303,6 +303,7 @@ void CodeGen::lowerPou(Symbol* pou) {
   if (result.ptr && !sret) b_.CreateRet(load(result));
   else b_.CreateRetVoid();
   if (st.hasSafepoint) safepointFns_.insert(f);
+  syncBudgetAroundCalls(st);
   fs_ = nullptr;
 }
 

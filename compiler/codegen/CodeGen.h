@@ -31,6 +31,7 @@ struct CodegenOptions {
 // Where a runtime fault can happen: each check and safepoint has one.
 struct Site {
   SourceRange range;
+  SourceLoc loc;               // where to point (an operator); invalid: range.begin
   std::string pou;
   std::string detail;          // e.g. the array or variable name
 };

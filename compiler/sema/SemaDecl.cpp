@@ -466,6 +466,10 @@ void SemaImpl::resolveTypeSymbol(Symbol* s) {
     // An alias keeps the target's identity; nothing more to do.
   }
   if (td->init) checkInitializer(td->init, s->type, ctx);
+  // A named enumeration, structure or subrange remembers its declaration:
+  // its initial value is the default of every variable of the type.
+  if (s->type && (td->def->kind == TypeRef::Struct || td->def->kind == TypeRef::Union || td->def->kind == TypeRef::Enum) && !s->type->decl)
+    const_cast<Type*>(s->type)->decl = td;
 }
 
 const Type* SemaImpl::resolveType(TypeRef* t, const Context& ctx, const std::string& derivedName) {
