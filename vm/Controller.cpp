@@ -144,10 +144,12 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
       for (size_t k = 0; k < traced.size(); ++k) {
         const uint8_t* p = image_ + traced[k].offset;
         const sema::Type* u = traced[k].type->underlying();
-        values[k].literal = formatValue(p, traced[k].type, layout);
+        values[k].literal = valueText(traced[k]);
         if (u->isReal()) {
           if (u->kind == sema::TypeKind::Real) { float f; std::memcpy(&f, p, 4); values[k].real = f; }
           else std::memcpy(&values[k].real, p, 8);
+        } else if (traced[k].bit >= 0) {
+          values[k].bits = (*p >> traced[k].bit) & 1;
         } else if (u->isElementary() && !u->isString()) {
           unsigned n = std::max(1u, u->bits() / 8);
           uint64_t v = 0;
@@ -197,7 +199,7 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
     if (!trace->finish(e)) err << "stc: error: " << e << "\n";
   }
   for (size_t k = 0; k < watches.size(); ++k)
-    out << opts.watches[k] << " = " << formatValue(image_ + watches[k].offset, watches[k].type, layout) << "\n";
+    out << opts.watches[k] << " = " << valueText(watches[k]) << "\n";
   out.flush();
   if (opts.stats) {
     for (size_t i = 0; i < sched_->taskCount(); ++i) {
@@ -212,6 +214,11 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   }
   reportFaults(err);
   return sched_->faults().empty() ? 0 : 3;
+}
+
+std::string Controller::valueText(const ValueRef& r) const {
+  if (r.bit >= 0) return (image_[r.offset] >> r.bit) & 1 ? "TRUE" : "FALSE";
+  return formatValue(image_ + r.offset, r.type, *model_.layout);
 }
 
 std::vector<Controller::RetainRegion> Controller::retainRegions() const {

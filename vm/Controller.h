@@ -22,6 +22,7 @@ namespace stc::vm {
 class Jit;
 class Scheduler;
 class TraceWriter;
+struct ValueRef;
 
 struct RunOptions {
   std::optional<uint64_t> cycles;        // slots of the fastest cyclic task
@@ -57,6 +58,8 @@ public:
   std::vector<RetainRegion> retainRegions() const;
   bool saveRetain(const std::string& file, std::string& error);
   void restoreRetain(const std::string& file, bool coldStart, std::ostream& err);
+
+  std::string valueText(const ValueRef& r) const;
 
 private:
   void reportFaults(std::ostream& err);

@@ -313,6 +313,7 @@ bool resolvePath(const codegen::ImageMap& map, const sema::Layout& layout, const
   const Type* t = root->type;
   out.retain = root->retain;
   out.persistent = root->persistent;
+  out.bit = root->bit;
   auto applyIndex = [&](const Seg& s) -> bool {
     const Type* at = strip(t);
     if (s.idx.empty()) return true;

@@ -16,6 +16,7 @@ struct ValueRef {
   uint64_t offset = 0;                 // from the image base
   const sema::Type* type = nullptr;
   bool retain = false, persistent = false;
+  int bit = -1;                        // a BOOL view of one bit
 };
 
 // Resolves `path` (case-insensitive).  On failure `error` says why, with a

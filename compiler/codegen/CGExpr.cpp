@@ -231,21 +231,16 @@ Address CodeGen::varAddr(const Symbol* s, const Expr* at) {
 Address CodeGen::directAddress(const std::string& text, const Type* t) {
   DirectLocation loc;
   if (!parseDirectAddress(text, loc)) return Address{llvm::ConstantPointerNull::get(ptrTy_), t};
-  const char* name = loc.area == 'I' ? "__stc_area_I" : loc.area == 'Q' ? "__stc_area_Q" : "__stc_area_M";
-  llvm::GlobalVariable* g = mod_.getGlobalVariable(name);
-  if (!g) {
-    g = new llvm::GlobalVariable(mod_, llvm::ArrayType::get(i8_, 65536), false, llvm::GlobalValue::ExternalLinkage,
-                                 llvm::ConstantAggregateZero::get(llvm::ArrayType::get(i8_, 65536)), name);
-    g->setAlignment(llvm::Align(16));
-  }
+  const ImageMap& im = out_.image;
+  uint64_t base = loc.area == 'I' ? im.inputOffset : loc.area == 'Q' ? im.outputOffset : im.memoryOffset;
+  uint64_t size = loc.area == 'I' ? im.inputSize : loc.area == 'Q' ? im.outputSize : im.memorySize;
   uint64_t end = loc.byteOffset + std::max<uint64_t>(loc.bytes, sizeOf(t));
-  if (end > 65536) {
-    error(SourceRange{}, "direct address " + text + " is beyond the 64 KiB process image");
+  if (end > size) {
+    error(SourceRange{}, "direct address " + text + " is beyond the %" + std::string(1, loc.area) + " area (" + std::to_string(size) +
+                             " bytes); declare a variable AT it to enlarge the area");
     return Address{llvm::ConstantPointerNull::get(ptrTy_), t};
   }
-  uint64_t& size = loc.area == 'I' ? out_.image.inputSize : loc.area == 'Q' ? out_.image.outputSize : out_.image.memorySize;
-  size = std::max(size, end);
-  llvm::Value* p = b_.CreateConstInBoundsGEP1_64(i8_, g, loc.byteOffset);
+  llvm::Value* p = imageAddr(base + loc.byteOffset);
   if (loc.bit >= 0 && strip(t)->isBool()) return Address{p, t, loc.bit};
   return Address{p, t};
 }

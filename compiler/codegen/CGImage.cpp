@@ -135,6 +135,45 @@ void CodeGen::layoutImage() {
         }
       }
   }
+  // The process image areas: large enough for every AT declaration, and at
+  // least 4 KiB each for direct addresses used in code.
+  uint64_t areaEnd[3] = {4096, 4096, 4096};
+  auto areaIndex = [](char a) { return a == 'I' ? 0 : a == 'Q' ? 1 : 2; };
+  for (auto& [v, loc] : atViews_) {
+    uint64_t end = loc.byteOffset + std::max<uint64_t>(loc.bytes, v->resolvedType ? sizeOf(v->resolvedType) : 1);
+    areaEnd[areaIndex(loc.area)] = std::max(areaEnd[areaIndex(loc.area)], alignUp(end, 8));
+  }
+  off = alignUp(off, 16);
+  out_.image.inputOffset = off;
+  out_.image.inputSize = areaEnd[0];
+  off += areaEnd[0];
+  out_.image.outputOffset = off;
+  out_.image.outputSize = areaEnd[1];
+  off += areaEnd[1];
+  out_.image.memoryOffset = off;
+  out_.image.memorySize = areaEnd[2];
+  off += areaEnd[2];
+  // Watchable names of the AT views.
+  auto areaBase = [&](char a) { return a == 'I' ? out_.image.inputOffset : a == 'Q' ? out_.image.outputOffset : out_.image.memoryOffset; };
+  auto viewRoot = [&](const std::string& path, const VarDecl* v) {
+    auto it = atViews_.find(v);
+    if (it == atViews_.end() || !v->resolvedType) return;
+    ImageRoot r;
+    r.path = path;
+    r.offset = areaBase(it->second.area) + it->second.byteOffset;
+    r.type = v->resolvedType;
+    r.bit = strip(v->resolvedType)->isBool() ? it->second.bit : -1;
+    out_.image.roots.push_back(r);
+  };
+  for (GlobalVarDecl* g : model_.globalLists)
+    for (const VarDecl* v : g->block.vars) {
+      viewRoot(v->name.name, v);
+      if (!g->listName.name.empty()) viewRoot(g->listName.name + "." + v->name.name, v);
+    }
+  for (Symbol* p : model_.pous)
+    if (p->kind == Symbol::Program && p->pou->decl)
+      for (const VarBlock& b : p->pou->decl->varBlocks)
+        for (const VarDecl* v : b.vars) viewRoot(p->name + "." + v->name.name, v);
   imageSize_ = alignUp(std::max<uint64_t>(off, 8), 16);
   out_.image.size = imageSize_;
   image_ = new llvm::GlobalVariable(mod_, llvm::ArrayType::get(i8_, imageSize_), false, llvm::GlobalValue::ExternalLinkage, nullptr,

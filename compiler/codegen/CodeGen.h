@@ -48,11 +48,13 @@ struct ImageRoot {
   uint64_t offset = 0;
   const sema::Type* type = nullptr;
   bool retain = false, persistent = false, constant = false, alias = false;   // alias: another name of an earlier root
+  int bit = -1;                // a BOOL view of one bit (AT %IX1.2)
 };
 
 struct ImageMap {
   uint64_t size = 0;
   std::vector<ImageRoot> roots;
+  // The process image areas %I, %Q, %M, at the end of the image.
   uint64_t inputOffset = 0, inputSize = 0, outputOffset = 0, outputSize = 0, memoryOffset = 0, memorySize = 0;
   const ImageRoot* find(const std::string& upperPath) const;
 };

@@ -12,6 +12,8 @@ uint64_t alignUp(uint64_t v, uint64_t a) { return (v + a - 1) / a * a; }
 }  // namespace
 
 bool Layout::isInstanceField(const ast::VarDecl* v) {
+  // `x AT %MW10` is a view of the process image, not storage of its own.
+  if (!v->address.empty() && v->address.find('*') == std::string::npos) return false;
   switch (v->section) {
     case ast::VarSection::Input: case ast::VarSection::Output: case ast::VarSection::InOut:
     case ast::VarSection::Var: case ast::VarSection::Inst:
