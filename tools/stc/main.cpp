@@ -171,7 +171,10 @@ std::unique_ptr<codegen::CompiledModule> compile(Compilation& c, const BuildArgs
   for (const std::string& p : a.paths) inputsOk = c.addPath(p) && inputsOk;
   bool ok = false;
   CompileOptions co = compileOptions(a);
-  if (a.testlib) co.libraries.push_back({"<testlib>", vm::registerTestLib()});
+  // The test natives are always registered (a declaration that does not
+  // match them is a load error); their ST declarations only with --testlib.
+  const char* testlib = vm::registerTestLib();
+  if (a.testlib) co.libraries.push_back({"<testlib>", testlib});
   if (inputsOk) runWithLargeStack([&] { ok = c.check(co); });
   status = 1;
   if (!ok || !inputsOk || !c.model()) {
