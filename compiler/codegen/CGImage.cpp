@@ -229,6 +229,7 @@ void CodeGen::buildImage() {
   st.allocaBuilder = &allocas;
   st.returnBlock = llvm::BasicBlock::Create(ctx_, "return", f);
   b_.SetInsertPoint(code);
+  b_.SetCurrentDebugLocation(llvm::DebugLoc());
   for (const DynamicInit& d : imageDynamic_) assign(Address{imageAddr(d.offset), d.type}, d.expr);
   if (blockOpen()) b_.CreateBr(st.returnBlock);
   b_.SetInsertPoint(st.returnBlock);
@@ -318,6 +319,8 @@ bool CodeGen::foldScalar(const Expr* e, const Type* to, llvm::Constant*& out) {
     foldFn_ = llvm::Function::Create(llvm::FunctionType::get(llvm::Type::getVoidTy(ctx_), false), llvm::Function::InternalLinkage,
                                      "__stc_fold", mod_);
   FnState* savedFs = fs_;
+  llvm::DebugLoc savedLoc = b_.getCurrentDebugLocation();
+  b_.SetCurrentDebugLocation(llvm::DebugLoc());
   auto savedBlock = b_.GetInsertBlock();
   auto savedPoint = b_.GetInsertPoint();
   bool hadPoint = savedBlock != nullptr;
@@ -342,6 +345,7 @@ bool CodeGen::foldScalar(const Expr* e, const Type* to, llvm::Constant*& out) {
   fs_ = savedFs;
   if (hadPoint) b_.SetInsertPoint(savedBlock, savedPoint);
   else b_.ClearInsertionPoint();
+  b_.SetCurrentDebugLocation(savedLoc);
   return ok;
 }
 

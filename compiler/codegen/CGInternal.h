@@ -8,6 +8,7 @@
 //   Emit.cpp      - optimisation pipelines and --emit
 #pragma once
 
+#include <llvm/IR/DIBuilder.h>
 #include <llvm/IR/IRBuilder.h>
 #include <llvm/IR/LLVMContext.h>
 #include <llvm/IR/Module.h>
@@ -71,6 +72,7 @@ struct FnState {
   llvm::IRBuilder<>* allocaBuilder = nullptr;
   bool hasSafepoint = false;
   llvm::AllocaInst* budget = nullptr;          // the function's copy of __stc_budget (a register after mem2reg)
+  llvm::DISubprogram* sp = nullptr;            // -g
 };
 
 class CodeGen {
@@ -170,6 +172,16 @@ public:
   void checkIndex(llvm::Value* idx, int64_t lo, int64_t hi, uint32_t site);
   llvm::Value* checkedDivisor(llvm::Value* d, const ast::Node* at);
   llvm::Value* nullChecked(llvm::Value* p, FaultKind kind, const ast::Node* at);
+
+  // ------------------------------------------------------------ debug info (CGDebug.cpp)
+  void beginDebugInfo();
+  void finishDebugInfo();
+  llvm::DISubprogram* debugFunction(llvm::Function* f, Symbol* pou);
+  void debugLocation(SourceLoc loc);           // for the instructions that follow
+  llvm::DIFile* debugFile(uint32_t fileId);
+  std::unique_ptr<llvm::DIBuilder> di_;
+  llvm::DICompileUnit* cu_ = nullptr;
+  std::map<uint32_t, llvm::DIFile*> diFiles_;
 
   // ------------------------------------------------------------ runtime ABI
   llvm::FunctionCallee runtime(const char* name, llvm::Type* ret, llvm::ArrayRef<llvm::Type*> params, bool noreturn = false);

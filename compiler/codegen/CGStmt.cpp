@@ -75,6 +75,7 @@ void CodeGen::syncBudgetAroundCalls(FnState& st) {
 
 void CodeGen::emitStmt(const Stmt* s) {
   if (!blockOpen()) b_.SetInsertPoint(newBlock("dead"));
+  debugLocation(s->range.begin);
   switch (s->kind) {
     case Stmt::Assign: {
       auto* a = cast<AssignStmt>(s);

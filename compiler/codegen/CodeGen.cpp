@@ -236,6 +236,9 @@ void CodeGen::lowerPou(Symbol* pou) {
   allocas.SetInsertPoint(entry->getTerminator());
   st.allocaBuilder = &allocas;
   b_.SetInsertPoint(code);
+  b_.SetCurrentDebugLocation(llvm::DebugLoc());
+  st.sp = debugFunction(f, pou);
+  debugLocation(pou->declRange.begin);
   auto argIt = f->arg_begin();
   bool isBody = pou->kind == Symbol::FunctionBlock || pou->kind == Symbol::Program || pou->kind == Symbol::Action;
   llvm::Value* sret = nullptr;
@@ -300,10 +303,12 @@ void CodeGen::lowerPou(Symbol* pou) {
   emitStmts(d->body);
   if (blockOpen()) b_.CreateBr(st.returnBlock);
   b_.SetInsertPoint(st.returnBlock);
+  debugLocation(d->endRange.valid() ? d->endRange.begin : pou->declRange.begin);
   if (result.ptr && !sret) b_.CreateRet(load(result));
   else b_.CreateRetVoid();
   if (st.hasSafepoint) safepointFns_.insert(f);
   syncBudgetAroundCalls(st);
+  b_.SetCurrentDebugLocation(llvm::DebugLoc());
   fs_ = nullptr;
 }
 
@@ -322,6 +327,7 @@ bool CodeGen::run(bool needTasks) {
       for (const VarBlock& vb : pou->pou->decl->varBlocks)
         for (const VarDecl* v : vb.vars) varOwner_[v] = pou;
   budget_ = new llvm::GlobalVariable(mod_, i64_, false, llvm::GlobalValue::ExternalLinkage, nullptr, "__stc_budget");
+  beginDebugInfo();
   layoutImage();
   // Every POU body, then the image (its initialiser may refer to vtables and functions).
   for (Symbol* pou : model_.pous) lowerPou(pou);
@@ -457,6 +463,7 @@ bool CodeGen::run(bool needTasks) {
   if (errors_) return false;
   std::string err;
   llvm::raw_string_ostream os(err);
+  finishDebugInfo();
   if (getenv("STC_DUMP_IR")) mod_.print(llvm::errs(), nullptr);
   if (llvm::verifyModule(mod_, &os)) {
     diags_.error(SourceLoc{}, "internal compiler error: invalid LLVM IR: " + os.str().substr(0, 2000), "codegen");
