@@ -16,7 +16,10 @@ import tempfile
 
 
 def main():
+    # check_run.py STC FILE [TARGET]: headers from FILE; runs TARGET (a project
+    # directory, say) instead of FILE when given.
     stc, path = sys.argv[1], sys.argv[2]
+    target = sys.argv[3] if len(sys.argv) > 3 else path
     args, expect, stderr_expect = [], [], []
     exit_code = 0
     twice = None
@@ -35,7 +38,7 @@ def main():
                 twice = s[len("// run-twice-identical:"):].strip()
     with tempfile.TemporaryDirectory() as tmp:
         run_args = [a.replace("{{TMP}}", tmp) for a in args]
-        cmd = [stc, "run", path, "--color=never"] + run_args
+        cmd = [stc, "run", target, "--color=never"] + run_args
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
         ok = True
         got = [l for l in p.stdout.splitlines()]
