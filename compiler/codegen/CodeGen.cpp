@@ -335,16 +335,30 @@ bool CodeGen::run(bool needTasks) {
   buildImage();
 
   // Program entries: one function per program instance.
-  auto programEntry = [&](const std::string& instName, Symbol* progType, uint64_t off) {
+  // One entry per program instance; a configuration's program arguments
+  // (PROGRAM p WITH T : Prog(IN := x, OUT => y)) are applied around the body
+  // exactly like an FB call's.
+  auto programEntry = [&](const std::string& instName, Symbol* progType, uint64_t off, const std::vector<Argument>* args) {
     std::string name = "__stc_prog." + instName;
     if (auto* existing = mod_.getFunction(name)) return std::string(existing->getName());
     auto* f = llvm::Function::Create(llvm::FunctionType::get(llvm::Type::getVoidTy(ctx_), false), llvm::Function::ExternalLinkage, name, mod_);
-    auto* bb = llvm::BasicBlock::Create(ctx_, "entry", f);
-    llvm::IRBuilder<> ib(bb);
-    llvm::Function* body = functionFor(progType);
-    ib.CreateCall(body, {ib.CreateConstInBoundsGEP1_64(i8_, image_, off)});
-    ib.CreateRetVoid();
-    calls_[f].insert(body);
+    FnState st;
+    st.fn = f;
+    fs_ = &st;
+    auto* entry = llvm::BasicBlock::Create(ctx_, "entry", f);
+    auto* code = llvm::BasicBlock::Create(ctx_, "code", f);
+    llvm::IRBuilder<> allocas(entry);
+    allocas.CreateBr(code);
+    allocas.SetInsertPoint(entry->getTerminator());
+    st.allocaBuilder = &allocas;
+    b_.SetInsertPoint(code);
+    b_.SetCurrentDebugLocation(llvm::DebugLoc());
+    CallExpr call;
+    call.target = progType;
+    if (args) call.args = *args;
+    callInstance(&call, progType, imageAddr(off));
+    b_.CreateRetVoid();
+    fs_ = nullptr;
     return name;
   };
   // May a function reach a safepoint?  (Closure over the direct call graph.)
@@ -401,7 +415,7 @@ bool CodeGen::run(bool needTasks) {
           if (p->kind == Symbol::Program && equalsIgnoreCase(p->name, pc.type.parts.back().name)) type = p;
         auto root = out_.image.find(asciiUpper(pc.name.name));
         if (!type || !root) continue;
-        std::string entry = programEntry(pc.name.name, type, root->offset);
+        std::string entry = programEntry(pc.name.name, type, root->offset, &pc.args);
         auto ti = taskIndex.find(asciiUpper(pc.task.name));
         if (pc.task.empty() || ti == taskIndex.end()) {
           // A program without a task runs in a default cyclic task.
@@ -453,7 +467,7 @@ bool CodeGen::run(bool needTasks) {
     plan.name = "Main";
     plan.intervalNs = opts_.defaultIntervalNs;
     for (Symbol* p : chosen) {
-      plan.entries.push_back(programEntry(p->name, p, programOffsets_[p]));
+      plan.entries.push_back(programEntry(p->name, p, programOffsets_[p], nullptr));
       plan.programNames.push_back(p->name);
     }
     out_.tasks.push_back(plan);

@@ -448,6 +448,7 @@ void SemaImpl::checkConfiguration(ConfigurationDecl* c, const Context& ctx) {
         call.parenRange = p.range;
         resolveSignature(prog);
         checkArguments(&call, prog->pou->params, ctx, prog->name, false);
+        p.args = call.args;   // keep the parameter bindings for code generation
       }
     }
   }
