@@ -219,17 +219,8 @@ void CodeGen::buildImage() {
   auto* f = llvm::Function::Create(llvm::FunctionType::get(llvm::Type::getVoidTy(ctx_), false), llvm::Function::ExternalLinkage,
                                    "__stc_init_dynamic", mod_);
   FnState st;
-  st.fn = f;
-  fs_ = &st;
-  auto* entry = llvm::BasicBlock::Create(ctx_, "entry", f);
-  auto* code = llvm::BasicBlock::Create(ctx_, "code", f);
-  llvm::IRBuilder<> allocas(entry);
-  allocas.CreateBr(code);
-  allocas.SetInsertPoint(entry->getTerminator());
-  st.allocaBuilder = &allocas;
+  beginFunction(st, f);
   st.returnBlock = llvm::BasicBlock::Create(ctx_, "return", f);
-  b_.SetInsertPoint(code);
-  b_.SetCurrentDebugLocation(llvm::DebugLoc());
   for (const DynamicInit& d : imageDynamic_) assign(Address{imageAddr(d.offset), d.type}, d.expr);
   if (blockOpen()) b_.CreateBr(st.returnBlock);
   b_.SetInsertPoint(st.returnBlock);
@@ -325,16 +316,8 @@ bool CodeGen::foldScalar(const Expr* e, const Type* to, llvm::Constant*& out) {
   auto savedPoint = b_.GetInsertPoint();
   bool hadPoint = savedBlock != nullptr;
   FnState st;
-  st.fn = foldFn_;
-  auto* entry = llvm::BasicBlock::Create(ctx_, "entry", foldFn_);
-  auto* code = llvm::BasicBlock::Create(ctx_, "code", foldFn_);
-  llvm::IRBuilder<> allocas(entry);
-  allocas.CreateBr(code);
-  allocas.SetInsertPoint(entry->getTerminator());
-  st.allocaBuilder = &allocas;
-  st.returnBlock = code;
-  fs_ = &st;
-  b_.SetInsertPoint(code);
+  beginFunction(st, foldFn_);
+  st.returnBlock = b_.GetInsertBlock();
   unsigned errorsBefore = errors_;
   llvm::Value* v = emitValue(e, to);
   auto* c = llvm::dyn_cast_or_null<llvm::Constant>(v);

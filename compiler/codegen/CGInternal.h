@@ -70,6 +70,7 @@ struct FnState {
   std::vector<Loop> loops;
   std::map<std::string, llvm::BasicBlock*> labels;   // upper-case label -> block
   llvm::IRBuilder<>* allocaBuilder = nullptr;
+  std::unique_ptr<llvm::IRBuilder<>> allocaBuilderStorage;
   bool hasSafepoint = false;
   llvm::AllocaInst* budget = nullptr;          // the function's copy of __stc_budget (a register after mem2reg)
   llvm::DISubprogram* sp = nullptr;            // -g
@@ -97,6 +98,9 @@ public:
   const Type* returnTypeOf(Symbol* pou);       // result type (accessors: the property's)           // aggregate result through a leading pointer
   void lowerPou(Symbol* pou);
   bool isNative(const Symbol* pou) const;
+  // Starts lowering `f`: an entry block for allocas falling through to the
+  // code block, where b_ is left; fs_ = &st.
+  void beginFunction(FnState& st, llvm::Function* f);
   Symbol* ownerOf(Symbol* pou) const;          // FB/program of a method/action/accessor
   const std::vector<Symbol*>& paramsOf(Symbol* pou);   // inherited params first (FB)
 

@@ -220,22 +220,27 @@ llvm::Function* CodeGen::functionFor(Symbol* pou) {
   return f;
 }
 
+void CodeGen::beginFunction(FnState& st, llvm::Function* f) {
+  st.fn = f;
+  fs_ = &st;
+  // Allocas go to their own entry block, which falls through to the code.
+  auto* entry = llvm::BasicBlock::Create(ctx_, "entry", f);
+  auto* code = llvm::BasicBlock::Create(ctx_, "code", f);
+  st.allocaBuilderStorage = std::make_unique<llvm::IRBuilder<>>(entry);
+  st.allocaBuilderStorage->CreateBr(code);
+  st.allocaBuilderStorage->SetInsertPoint(entry->getTerminator());
+  st.allocaBuilder = st.allocaBuilderStorage.get();
+  b_.SetInsertPoint(code);
+  b_.SetCurrentDebugLocation(llvm::DebugLoc());
+}
+
 void CodeGen::lowerPou(Symbol* pou) {
   const PouDecl* d = pou->pou->decl;
   if (!d || isNative(pou) || !d->hasBody || d->isAbstract) return;
   llvm::Function* f = functionFor(pou);
   FnState st;
-  st.fn = f;
   st.pou = pou;
-  fs_ = &st;
-  // Allocas go to their own entry block, which falls through to the code.
-  auto* entry = llvm::BasicBlock::Create(ctx_, "entry", f);
-  auto* code = llvm::BasicBlock::Create(ctx_, "code", f);
-  llvm::IRBuilder<> allocas(entry);
-  allocas.CreateBr(code);
-  allocas.SetInsertPoint(entry->getTerminator());
-  st.allocaBuilder = &allocas;
-  b_.SetInsertPoint(code);
+  beginFunction(st, f);
   b_.SetCurrentDebugLocation(llvm::DebugLoc());
   st.sp = debugFunction(f, pou);
   debugLocation(pou->declRange.begin);
@@ -343,16 +348,7 @@ bool CodeGen::run(bool needTasks) {
     if (auto* existing = mod_.getFunction(name)) return std::string(existing->getName());
     auto* f = llvm::Function::Create(llvm::FunctionType::get(llvm::Type::getVoidTy(ctx_), false), llvm::Function::ExternalLinkage, name, mod_);
     FnState st;
-    st.fn = f;
-    fs_ = &st;
-    auto* entry = llvm::BasicBlock::Create(ctx_, "entry", f);
-    auto* code = llvm::BasicBlock::Create(ctx_, "code", f);
-    llvm::IRBuilder<> allocas(entry);
-    allocas.CreateBr(code);
-    allocas.SetInsertPoint(entry->getTerminator());
-    st.allocaBuilder = &allocas;
-    b_.SetInsertPoint(code);
-    b_.SetCurrentDebugLocation(llvm::DebugLoc());
+    beginFunction(st, f);
     CallExpr call;
     call.target = progType;
     if (args) call.args = *args;

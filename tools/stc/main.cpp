@@ -241,33 +241,23 @@ int runRun(const BuildArgs& a) {
   if (!m) return status;
   vm::RunOptions ro;
   if (a.cyclesGiven) ro.cycles = a.cycles;
-  if (!a.forDuration.empty()) {
+  // Duration options: absent, or a valid duration (else exit 2).
+  auto duration = [](const char* option, const std::string& text, bool positive, std::optional<int64_t>& out) {
+    if (text.empty()) return true;
     int64_t ns = 0;
-    if (!parseDuration(a.forDuration, ns) || ns < 0) {
-      std::cerr << "stc: error: --for: '" << a.forDuration << "' is not a duration (e.g. 10s, 250ms, T#1s500ms)\n";
-      return 2;
+    if (!parseDuration(text, ns) || ns < 0 || (positive && ns == 0)) {
+      std::cerr << "stc: error: " << option << ": '" << text << "' is not a duration (e.g. 10s, 250ms, T#1s500ms)\n";
+      return false;
     }
-    ro.duration = ns;
-  }
-  if (!a.watchdog.empty()) {
-    int64_t ns = 0;
-    if (!parseDuration(a.watchdog, ns) || ns < 0) {
-      std::cerr << "stc: error: --watchdog: '" << a.watchdog << "' is not a duration\n";
-      return 2;
-    }
-    ro.watchdog = ns;
-  }
+    out = ns;
+    return true;
+  };
+  if (!duration("--for", a.forDuration, false, ro.duration) || !duration("--watchdog", a.watchdog, false, ro.watchdog) ||
+      !duration("--retain-every", a.retainEvery, true, ro.retainEvery))
+    return 2;
   if (a.slice > 0) ro.slice = a.slice;
   ro.retainFile = a.retain;
   ro.cold = a.cold;
-  if (!a.retainEvery.empty()) {
-    int64_t ns = 0;
-    if (!parseDuration(a.retainEvery, ns) || ns <= 0) {
-      std::cerr << "stc: error: --retain-every: '" << a.retainEvery << "' is not a duration\n";
-      return 2;
-    }
-    ro.retainEvery = ns;
-  }
   ro.realtime = a.realtime;
   ro.stats = a.stats;
   ro.watches = a.watches;
