@@ -214,6 +214,7 @@ struct TypeRef : Node {
   std::vector<VarDecl*> members;            // Struct, Union
   QualifiedName structBase;                 // STRUCT EXTENDS
   const sema::Type* resolved = nullptr;
+  const struct TypeDecl* aliasDecl = nullptr;   // Named: the TYPE declaration it names, if any (sema)
 };
 
 // ---------------------------------------------------------------- statements

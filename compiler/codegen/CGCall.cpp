@@ -127,7 +127,8 @@ llvm::Value* CodeGen::callPou(const CallExpr* e, Symbol* target, llvm::Value* se
           args.push_back(llvm::ConstantPointerNull::get(ptrTy_));
           continue;
         }
-        args.push_back(emitAddr(a->value).ptr);
+        if (isOpenArray(p->type)) args.push_back(arrayDescriptor(a->value));
+        else args.push_back(emitAddr(a->value).ptr);
       }
     }
   llvm::CallInst* call;
@@ -532,6 +533,69 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
         b_.CreateCall(runtime(wide ? "__stc_wstr_append" : "__stc_str_append", llvm::Type::getVoidTy(ctx_), {ptrTy_, i64_, ptrTy_}),
                       {tmp.ptr, b_.getInt64(st->length), arg(e, i, nullptr)});
       return tmp.ptr;
+    }
+    case sema::FBound: {
+      // LOWER_BOUND(arr, dim) / UPPER_BOUND: constants for declared arrays,
+      // read from the descriptor for ARRAY[*] parameters.
+      const Expr* a = argExpr(0);
+      bool lower = asciiUpper(name) == "LOWER_BOUND";
+      const Type* at = strip(a->type);
+      llvm::Value* dim = b_.CreateSub(arg(e, 1, elementary(TypeKind::LInt)), b_.getInt64(1));
+      llvm::Value* r;
+      if (isOpenArray(at)) {
+        llvm::Value* desc = emitAddr(a).ptr;
+        check(b_.CreateICmpULT(dim, b_.getInt64(at->dims.size())), FaultKind::Index, site(argExpr(1), "dimension"));
+        llvm::Value* slot = b_.CreateAdd(b_.CreateMul(dim, b_.getInt64(2)), b_.getInt64(lower ? 1 : 2));
+        r = b_.CreateAlignedLoad(i64_, b_.CreateInBoundsGEP(i64_, desc, slot), llvm::MaybeAlign(8));
+      } else {
+        r = b_.getInt64(0);
+        for (size_t k = at->dims.size(); k-- > 0;)
+          r = b_.CreateSelect(b_.CreateICmpEQ(dim, b_.getInt64(k)), b_.getInt64(static_cast<uint64_t>(lower ? at->dims[k].lo : at->dims[k].hi)), r);
+      }
+      return b_.CreateTrunc(r, valueType(rt));
+    }
+    case sema::FFixed: {
+      // The typed time arithmetic of IEC table 37 and the CODESYS memory helpers.
+      std::string up = asciiUpper(name);
+      auto input = [&](const char* pname) -> const Expr* {
+        for (const Argument& a : e->args)
+          if (a.param && asciiUpper(a.param->name) == pname) return a.value;
+        return nullptr;
+      };
+      if (up.rfind("ADD_", 0) == 0 || up.rfind("SUB_", 0) == 0 || up.rfind("MUL_", 0) == 0 || up.rfind("DIV_", 0) == 0) {
+        const Expr* a = input("IN1");
+        const Expr* b = input("IN2");
+        if (!a || !b) return unsupported();
+        llvm::Value* x = emitValue(a, nullptr);
+        if (up[0] == 'A') return b_.CreateAdd(x, emitValue(b, elementary(TypeKind::LTime)));
+        if (up[0] == 'S') return b_.CreateSub(x, emitValue(b, elementary(TypeKind::LTime)));
+        llvm::Type* d = llvm::Type::getDoubleTy(ctx_);
+        llvm::Value* f = emitValue(b, elementary(TypeKind::LReal));
+        llvm::Value* tv = b_.CreateSIToFP(x, d);
+        llvm::Value* res = up[0] == 'M' ? b_.CreateFMul(tv, f) : b_.CreateFDiv(tv, f);
+        return b_.CreateIntrinsic(llvm::Intrinsic::fptosi_sat, {i64_, d}, {b_.CreateUnaryIntrinsic(llvm::Intrinsic::round, res)});
+      }
+      if (up == "MEMCPY" || up == "MEMMOVE" || up == "MEMSET" || up == "MEMCMP") {
+        const Expr* n = input("N");
+        llvm::Value* count = n ? emitValue(n, elementary(TypeKind::ULInt)) : b_.getInt64(0);
+        if (up == "MEMSET") {
+          llvm::Value* dst = emitValue(input("PDEST"), nullptr);
+          llvm::Value* v = b_.CreateTrunc(emitValue(input("VALUE"), elementary(TypeKind::ULInt)), i8_);
+          b_.CreateMemSet(dst, v, count, llvm::MaybeAlign(1));
+          return rt && rt->kind != TypeKind::Void && !isAggregate(rt) ? static_cast<llvm::Value*>(dst) : nullptr;
+        }
+        if (up == "MEMCMP") {
+          llvm::Value* c = b_.CreateCall(runtime("memcmp", llvm::Type::getInt32Ty(ctx_), {ptrTy_, ptrTy_, i64_}),
+                                         {emitValue(input("P1"), nullptr), emitValue(input("P2"), nullptr), count});
+          return b_.CreateIntCast(c, valueType(rt), true);
+        }
+        llvm::Value* dst = emitValue(input("PDEST"), nullptr);
+        llvm::Value* src = emitValue(input("PSRC"), nullptr);
+        if (up == "MEMCPY") b_.CreateMemCpy(dst, llvm::MaybeAlign(1), src, llvm::MaybeAlign(1), count);
+        else b_.CreateMemMove(dst, llvm::MaybeAlign(1), src, llvm::MaybeAlign(1), count);
+        return rt && rt->kind != TypeKind::Void && !isAggregate(rt) ? static_cast<llvm::Value*>(dst) : nullptr;
+      }
+      return unsupported();
     }
     default:
       return unsupported();

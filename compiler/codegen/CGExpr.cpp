@@ -147,7 +147,7 @@ llvm::Value* CodeGen::constantValue(const LiteralExpr* lit, const Type* t) {
     case LiteralExpr::String: case LiteralExpr::WString:
       return nullptr;
     default: {
-      int64_t v = lit->negative ? -static_cast<int64_t>(lit->intValue) : static_cast<int64_t>(lit->intValue);
+      int64_t v = static_cast<int64_t>(lit->negative ? 0 - lit->intValue : lit->intValue);   // two's complement, no overflow
       if (vt->isFloatingPointTy()) return llvm::ConstantFP::get(vt, static_cast<double>(v));
       if (vt->isPointerTy()) return llvm::ConstantPointerNull::get(ptrTy_);
       if (vt == i1_) return llvm::ConstantInt::get(i1_, v != 0);
@@ -245,6 +245,28 @@ Address CodeGen::directAddress(const std::string& text, const Type* t) {
   return Address{p, t};
 }
 
+bool CodeGen::isOpenArray(const Type* t) {
+  t = strip(t);
+  if (!t || t->kind != TypeKind::Array) return false;
+  for (const sema::Dim& d : t->dims)
+    if (d.star) return true;
+  return false;
+}
+
+llvm::Value* CodeGen::arrayDescriptor(const Expr* array) {
+  const Type* at = strip(array->type);
+  Address a = emitAddr(array);
+  if (isOpenArray(at)) return a.ptr;   // passed on: the descriptor itself
+  auto* ty = llvm::ArrayType::get(i64_, 1 + 2 * at->dims.size());
+  auto* desc = fs_->allocaBuilder->CreateAlloca(ty, nullptr, "desc");
+  b_.CreateAlignedStore(a.ptr, desc, llvm::MaybeAlign(8));
+  for (size_t k = 0; k < at->dims.size(); ++k) {
+    b_.CreateAlignedStore(b_.getInt64(static_cast<uint64_t>(at->dims[k].lo)), b_.CreateConstInBoundsGEP1_64(i64_, desc, 1 + 2 * k), llvm::MaybeAlign(8));
+    b_.CreateAlignedStore(b_.getInt64(static_cast<uint64_t>(at->dims[k].hi)), b_.CreateConstInBoundsGEP1_64(i64_, desc, 2 + 2 * k), llvm::MaybeAlign(8));
+  }
+  return desc;
+}
+
 llvm::Value* CodeGen::instancePtr(const Expr* e) {
   if (auto* n = dyn_cast<NameExpr>(e); n && n->symbol && n->symbol->kind == Symbol::Program)
     return imageAddr(programOffsets_[n->symbol]);
@@ -305,6 +327,33 @@ Address CodeGen::emitAddr(const Expr* e) {
         return Address{b_.CreateInBoundsGEP(wide ? i16_ : i8_, base.ptr, i), et};
       }
       if (bt->kind != TypeKind::Array) break;
+      if (isOpenArray(bt)) {
+        // Bounds from the descriptor; row-major with run-time extents.
+        llvm::Value* desc = base.ptr;
+        llvm::Value* data = b_.CreateAlignedLoad(ptrTy_, desc, llvm::MaybeAlign(8));
+        uint64_t es = sizeOf(bt->element);
+        es = (es + alignOf(bt->element) - 1) / alignOf(bt->element) * alignOf(bt->element);
+        llvm::Value* linear = b_.getInt64(0);
+        for (size_t k = 0; k < bt->dims.size() && k < ix->indices.size(); ++k) {
+          llvm::Value* lo = b_.CreateAlignedLoad(i64_, b_.CreateConstInBoundsGEP1_64(i64_, desc, 1 + 2 * k), llvm::MaybeAlign(8));
+          llvm::Value* hi = b_.CreateAlignedLoad(i64_, b_.CreateConstInBoundsGEP1_64(i64_, desc, 2 + 2 * k), llvm::MaybeAlign(8));
+          llvm::Value* i = emitValue(ix->indices[k], elementary(TypeKind::LInt));
+          llvm::Value* rel = b_.CreateSub(i, lo);
+          if (opts_.checks) {
+            uint32_t st = site(ix->indices[k], "");
+            auto* fail = newBlock("index.fail");
+            auto* cont = newBlock("index.ok");
+            b_.CreateCondBr(b_.CreateICmpULE(rel, b_.CreateSub(hi, lo)), cont, fail);
+            b_.SetInsertPoint(fail);
+            b_.CreateCall(runtime("__stc_fault_index", llvm::Type::getVoidTy(ctx_), {i32_, i64_, i64_, i64_}, true), {b_.getInt32(st), i, lo, hi});
+            b_.CreateUnreachable();
+            b_.SetInsertPoint(cont);
+          }
+          llvm::Value* extent = b_.CreateAdd(b_.CreateSub(hi, lo), b_.getInt64(1));
+          linear = b_.CreateAdd(b_.CreateMul(linear, extent), rel);
+        }
+        return Address{b_.CreateInBoundsGEP(i8_, data, b_.CreateMul(linear, b_.getInt64(es))), bt->element};
+      }
       uint64_t stride = sizeOf(bt->element);
       stride = (stride + alignOf(bt->element) - 1) / alignOf(bt->element) * alignOf(bt->element);
       llvm::Value* offset = b_.getInt64(0);

@@ -372,7 +372,7 @@ void CodeGen::defaultObject(ConstBuffer& buf, uint64_t off, const Type* t, std::
       if (l.hasVptr) buf.relocs[off] = vtableFor(t);
       for (const sema::FieldLayout& f : l.fields) {
         if (!f.type || f.indirect) continue;
-        if (f.decl && f.decl->init) initObject(buf, off + f.offset, f.type, f.decl->init, dyn, f.decl);
+        if (f.decl) initObject(buf, off + f.offset, f.type, f.decl->init, dyn, f.decl);
         else defaultObject(buf, off + f.offset, f.type, dyn);
         if (t->kind == TypeKind::Union) break;   // the first member decides
       }
@@ -384,8 +384,11 @@ void CodeGen::defaultObject(ConstBuffer& buf, uint64_t off, const Type* t, std::
 }
 
 void CodeGen::initObject(ConstBuffer& buf, uint64_t off, const Type* t, const Expr* init, std::vector<DynamicInit>& dyn, const VarDecl* decl) {
-  (void)decl;
   if (!t) return;
+  // No initial value: the default of a named alias type (TYPE Percent : INT := 50).
+  if (!init && decl && decl->type)
+    for (const TypeDecl* td = decl->type->aliasDecl; td && !init; td = td->def ? td->def->aliasDecl : nullptr)
+      if (td->init && !isa<ArrayInitExpr>(td->init) && !isa<StructInitExpr>(td->init) && !isAggregate(t)) init = td->init;
   if (!init) { defaultObject(buf, off, t, dyn); return; }
   if (auto* ai = dyn_cast<ArrayInitExpr>(init); ai && t->kind == TypeKind::Array) {
     defaultObject(buf, off, t, dyn);

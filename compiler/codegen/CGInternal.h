@@ -138,6 +138,9 @@ public:
   void storeBits(const ast::MemberExpr* m, llvm::Value* v);
   Address directAddress(const std::string& text, const Type* t);
   llvm::Value* instancePtr(const ast::Expr* e);                  // FB/program instance of an expression
+  // ARRAY[*] parameters get a descriptor {ptr data, i64 lo1, i64 hi1, ...}.
+  static bool isOpenArray(const Type* t);
+  llvm::Value* arrayDescriptor(const ast::Expr* array);
 
   // ------------------------------------------------------------ statements (CGStmt.cpp)
   void emitStmts(const std::vector<ast::Stmt*>& stmts);

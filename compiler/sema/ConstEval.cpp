@@ -14,7 +14,7 @@ std::optional<ConstValue> SemaImpl::evalConst(Expr* e, const Context& ctx) {
     switch (l->litKind) {
       case LiteralExpr::Int:
         v.kind = ConstValue::Int;
-        v.i = l->negative ? -static_cast<int64_t>(l->intValue) : static_cast<int64_t>(l->intValue);
+        v.i = static_cast<int64_t>(l->negative ? 0 - l->intValue : l->intValue);
         if (!l->negative && l->intValue > static_cast<uint64_t>(INT64_MAX)) v.isUnsignedBig = true;
         if (e->type && e->type->isBool()) v.kind = ConstValue::Bool;
         return v;

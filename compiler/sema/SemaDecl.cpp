@@ -477,9 +477,14 @@ const Type* SemaImpl::resolveType(TypeRef* t, const Context& ctx, const std::str
   if (t->resolved) return t->resolved;
   const Type* result = types_.error();
   switch (t->kind) {
-    case TypeRef::Named:
+    case TypeRef::Named: {
       result = resolveNamedType(t->name, ctx, true);
+      // Remember the TYPE declaration: an alias of an elementary type
+      // (TYPE Percent : INT := 50) shares INT's identity but has its own default.
+      if (Symbol* ts = lookupQualified(t->name, ctx.outer ? ctx.outer : &global_, false, "type"); ts && ts->kind == Symbol::TypeName)
+        t->aliasDecl = ts->typeDecl;
       break;
+    }
     case TypeRef::Sized: {
       std::string up = t->name.parts.size() == 1 ? upperCase(t->name.parts[0].name) : "";
       if (up != "STRING" && up != "WSTRING") {

@@ -158,7 +158,7 @@ bool SemaImpl::literalFits(const LiteralExpr* lit, const Type* to) const {
     if (lit->intValue > static_cast<uint64_t>(INT64_MAX) && !(to->element && to->element->isUnsignedInt())) return false;
     if (to->element && to->element->isUnsignedInt())
       return !lit->negative && lit->intValue >= static_cast<uint64_t>(to->lo) && lit->intValue <= static_cast<uint64_t>(to->hi);
-    int64_t v = lit->negative ? -static_cast<int64_t>(lit->intValue) : static_cast<int64_t>(lit->intValue);
+    int64_t v = static_cast<int64_t>(lit->negative ? 0 - lit->intValue : lit->intValue);
     return v >= to->lo && v <= to->hi;
   }
   const Type* u = to->underlying();
@@ -238,7 +238,7 @@ bool SemaImpl::checkConversion(const Type* to, Expr* e, const char* what) {
     if (literalFits(lit, to)) {
       // CODESYS mode: an integer for an enumeration should name one of its values.
       if (to->kind == TypeKind::Enum && lit->litKind == LiteralExpr::Int) {
-        int64_t v = lit->negative ? -static_cast<int64_t>(lit->intValue) : static_cast<int64_t>(lit->intValue);
+        int64_t v = static_cast<int64_t>(lit->negative ? 0 - lit->intValue : lit->intValue);
         bool known = false;
         for (auto& [n, ev] : to->enumValues) known = known || ev == v;
         if (!known)
