@@ -137,6 +137,19 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
     else tc.entry = [rt] { for (auto* f : rt->entries) f(); };
     sched_->addTask(std::move(tc));
   }
+  // The cycle: copy inputs in -> the task's programs -> native hooks -> copy outputs out.
+  const codegen::ImageMap& im = module_->image;
+  inputs_.resize(im.inputUsed);
+  outputs_.resize(im.outputUsed);
+  if (im.inputUsed || im.outputUsed)
+    sched_->setSlotCallbacks(
+        [this, &im](uint32_t) {
+          if (!inputs_.empty()) std::memcpy(image_ + im.inputOffset, inputs_.data(), inputs_.size());
+        },
+        [this, &im](uint32_t) {
+          if (!outputs_.empty()) std::memcpy(outputs_.data(), image_ + im.outputOffset, outputs_.size());
+        });
+  for (const NativeHook& h : nativeRegistry().cycleHooks()) sched_->addCycleHook(h.name, h.fn);
   if (trace) {
     TraceWriter* tw = trace.get();
     tickFn_ = [this, tw, &traced, &layout](Time now) {

@@ -50,6 +50,10 @@ public:
   int run(const RunOptions& opts, std::ostream& out, std::ostream& err);
 
   uint8_t* image() const { return image_; }
+  // The process image seen from outside (scenarios, simulated devices):
+  // inputs are copied into %I before each task slot, %Q out after it.
+  std::vector<uint8_t>& inputs() { return inputs_; }
+  const std::vector<uint8_t>& outputs() const { return outputs_; }
   const codegen::ImageMap& imageMap() const { return module_->image; }
   Scheduler& scheduler() { return *sched_; }
 
@@ -76,6 +80,7 @@ private:
   };
   std::vector<std::unique_ptr<TaskRuntime>> tasks_;
   std::function<void(Time)> tickFn_;       // trace sampling
+  std::vector<uint8_t> inputs_, outputs_;
 };
 
 }  // namespace stc::vm

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "vm/Scheduler.h"
 #include "vm/Time.h"
 
 namespace stc::vm {
@@ -31,9 +32,19 @@ struct NativeLibrary {
   std::string source;          // ST declarations
 };
 
+// A per-cycle hook of a native library (the motion kernel registers here):
+// runs after the programs of every task slot, also while the task is
+// suspended in a wait, in registration order.
+struct NativeHook {
+  std::string name;
+  std::function<void(const HookCtx&)> fn;
+};
+
 class NativeRegistry {
 public:
   void add(NativeEntry e) { entries_.push_back(std::move(e)); }
+  void addCycleHook(NativeHook h) { hooks_.push_back(std::move(h)); }
+  const std::vector<NativeHook>& cycleHooks() const { return hooks_; }
   void addLibrary(NativeLibrary lib) { libraries_.push_back(std::move(lib)); }
   const NativeEntry* find(std::string_view name) const;
   const std::vector<NativeLibrary>& libraries() const { return libraries_; }
@@ -41,6 +52,7 @@ public:
 private:
   std::vector<NativeEntry> entries_;
   std::vector<NativeLibrary> libraries_;
+  std::vector<NativeHook> hooks_;
 };
 
 NativeRegistry& nativeRegistry();

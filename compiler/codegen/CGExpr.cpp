@@ -240,6 +240,8 @@ Address CodeGen::directAddress(const std::string& text, const Type* t) {
                              " bytes); declare a variable AT it to enlarge the area");
     return Address{llvm::ConstantPointerNull::get(ptrTy_), t};
   }
+  if (loc.area == 'I') out_.image.inputUsed = std::max(out_.image.inputUsed, end);
+  if (loc.area == 'Q') out_.image.outputUsed = std::max(out_.image.outputUsed, end);
   llvm::Value* p = imageAddr(base + loc.byteOffset);
   if (loc.bit >= 0 && strip(t)->isBool()) return Address{p, t, loc.bit};
   return Address{p, t};

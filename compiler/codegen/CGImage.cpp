@@ -142,6 +142,8 @@ void CodeGen::layoutImage() {
   for (auto& [v, loc] : atViews_) {
     uint64_t end = loc.byteOffset + std::max<uint64_t>(loc.bytes, v->resolvedType ? sizeOf(v->resolvedType) : 1);
     areaEnd[areaIndex(loc.area)] = std::max(areaEnd[areaIndex(loc.area)], alignUp(end, 8));
+    if (loc.area == 'I') out_.image.inputUsed = std::max(out_.image.inputUsed, end);
+    if (loc.area == 'Q') out_.image.outputUsed = std::max(out_.image.outputUsed, end);
   }
   off = alignUp(off, 16);
   out_.image.inputOffset = off;

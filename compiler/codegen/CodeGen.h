@@ -56,6 +56,7 @@ struct ImageMap {
   std::vector<ImageRoot> roots;
   // The process image areas %I, %Q, %M, at the end of the image.
   uint64_t inputOffset = 0, inputSize = 0, outputOffset = 0, outputSize = 0, memoryOffset = 0, memorySize = 0;
+  uint64_t inputUsed = 0, outputUsed = 0;   // bytes of %I / %Q the program uses (copied at slot boundaries)
   const ImageRoot* find(const std::string& upperPath) const;
 };
 
