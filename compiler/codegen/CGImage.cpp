@@ -135,6 +135,37 @@ void CodeGen::layoutImage() {
         }
       }
   }
+  // VAR_CONFIG: Resource.Instance.var AT %IX1.0 locates a variable declared
+  // AT %I* / %Q*.  The location belongs to the declaration, so two instances
+  // of one program type cannot be mapped to different addresses.
+  std::vector<std::pair<std::string, const VarDecl*>> configViews;
+  for (ConfigurationDecl* c : model_.configurations)
+    for (const auto& cv : c->configVars) {
+      const auto& parts = cv.path.parts;
+      for (const ResourceDecl& r : c->resources)
+        for (const ProgramConfig& pc : r.programs) {
+          size_t i = 0;
+          if (parts.size() >= 3 && equalsIgnoreCase(parts[0].name, r.name.name)) i = 1;
+          if (parts.size() < i + 2 || !equalsIgnoreCase(parts[i].name, pc.name.name)) continue;
+          for (Symbol* p : model_.pous) {
+            if (p->kind != Symbol::Program || !equalsIgnoreCase(p->name, pc.type.parts.back().name)) continue;
+            for (const VarBlock& b : p->pou->decl->varBlocks)
+              for (const VarDecl* v : b.vars) {
+                if (!equalsIgnoreCase(v->name.name, parts[i + 1].name)) continue;
+                DirectLocation loc;
+                if (!parseDirectAddress(cv.address, loc)) continue;
+                auto it = atViews_.find(v);
+                if (it != atViews_.end() && (it->second.area != loc.area || it->second.byteOffset != loc.byteOffset || it->second.bit != loc.bit)) {
+                  error(cv.range, "'" + v->name.name + "' of program '" + p->name +
+                                      "' is located twice by VAR_CONFIG; instances of one program type share their addresses");
+                  continue;
+                }
+                atViews_[v] = loc;
+                configViews.push_back({pc.name.name + "." + v->name.name, v});
+              }
+          }
+        }
+    }
   // The process image areas: large enough for every AT declaration, and at
   // least 4 KiB each for direct addresses used in code.
   uint64_t areaEnd[3] = {4096, 4096, 4096};
@@ -176,6 +207,7 @@ void CodeGen::layoutImage() {
     if (p->kind == Symbol::Program && p->pou->decl)
       for (const VarBlock& b : p->pou->decl->varBlocks)
         for (const VarDecl* v : b.vars) viewRoot(p->name + "." + v->name.name, v);
+  for (auto& [path, v] : configViews) viewRoot(path, v);
   imageSize_ = alignUp(std::max<uint64_t>(off, 8), 16);
   out_.image.size = imageSize_;
   image_ = new llvm::GlobalVariable(mod_, llvm::ArrayType::get(i8_, imageSize_), false, llvm::GlobalValue::ExternalLinkage, nullptr,

@@ -8,6 +8,9 @@ namespace stc::codegen {
 
 using namespace stc::ast;
 
+// The largest stack frame a POU may declare (locals, VAR_TEMP, input copies).
+constexpr uint64_t kMaxFrameBytes = 256 * 1024;
+
 const char* faultCode(FaultKind k) {
   switch (k) {
     case FaultKind::DivisionByZero: return "fault-division-by-zero";
@@ -284,6 +287,16 @@ void CodeGen::lowerPou(Symbol* pou) {
       else store(slot, a);
       st.locals[v] = slot;
     }
+  }
+  // Task stacks are 1 MiB fibers: large locals would overflow them.
+  uint64_t frameBytes = 0;
+  for (const VarBlock& vb : d->varBlocks)
+    for (const VarDecl* v : vb.vars)
+      if (v->resolvedType && (v->section == VarSection::Temp || (!isBody && (v->section == VarSection::Var || v->section == VarSection::Input))))
+        frameBytes += sizeOf(v->resolvedType);
+  if (frameBytes > kMaxFrameBytes) {
+    error(d->name.range, "the local variables of '" + pou->name + "' take " + std::to_string(frameBytes) +
+                             " bytes; a task stack holds 1 MiB: declare large arrays as VAR_GLOBAL or in a program or function block instance");
   }
   // Locals: function/method variables, VAR_TEMP everywhere.  Initialised on every call.
   for (const VarBlock& vb : d->varBlocks)
