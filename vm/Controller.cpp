@@ -1,5 +1,7 @@
 #include "vm/Controller.h"
 
+#include "stdlib-motion/iec/StdNatives.h"
+
 #include <csignal>
 #include <cstring>
 #include <functional>
@@ -31,6 +33,7 @@ Controller::Controller(const sema::Model& model, DiagnosticsEngine& diags) : mod
 Controller::~Controller() = default;
 
 bool Controller::load(std::unique_ptr<codegen::CompiledModule> module, std::string& error) {
+  stdlib::registerStandardNatives();
   module_ = std::move(module);
   auto symbols = runtimeSymbols();
   for (const codegen::CompiledModule::Native& n : module_->natives) {

@@ -139,15 +139,22 @@ struct Gen {
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::cerr << "usage: stc_bindgen OUT.h NAMESPACE FILE.st...\n";
+    std::cerr << "usage: stc_bindgen OUT.h NAMESPACE [--no-stdlib] FILE.st...\n";
     return 2;
   }
+  // --no-stdlib: the files are the standard library itself.
+  bool stdlib = true;
+  int first = 3;
+  if (std::string(argv[3]) == "--no-stdlib") {
+    stdlib = false;
+    first = 4;
+  }
   Compilation c;
-  std::set<uint32_t> inputs;
-  for (int i = 3; i < argc; ++i) {
+  for (int i = first; i < argc; ++i) {
     if (!c.addPath(argv[i])) return 1;
   }
   CompileOptions o;
+  o.includeStdlib = stdlib;
   bool ok = false;
   runWithLargeStack([&] { ok = c.check(o); });
   for (const Diagnostic& d : c.diags().diagnostics()) std::cerr << renderText(c.sources(), d);
@@ -165,7 +172,7 @@ int main(int argc, char** argv) {
     if (!Gen::isNative(p) || p->declRange.begin.file == 0) continue;
     std::string path = c.sources().file(p->declRange.begin.file).path;
     bool mine = false;
-    for (int i = 3; i < argc; ++i) mine = mine || path == argv[i];
+    for (int i = first; i < argc; ++i) mine = mine || path == argv[i];
     if (mine) g.emitPou(p);
   }
   g.out << "}  // namespace " << argv[2] << "\n";
