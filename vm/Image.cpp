@@ -55,8 +55,10 @@ int64_t readSigned(const uint8_t* p, unsigned n) {
   return static_cast<int64_t>(v);
 }
 
+}  // namespace
+
 // Days since 1970-01-01 to a civil date (proleptic Gregorian).
-void civil(int64_t days, int64_t& y, unsigned& m, unsigned& d) {
+void civilFromDays(int64_t days, int64_t& y, unsigned& m, unsigned& d) {
   days += 719468;
   int64_t era = (days >= 0 ? days : days - 146096) / 146097;
   auto doe = static_cast<unsigned>(days - era * 146097);
@@ -69,13 +71,24 @@ void civil(int64_t days, int64_t& y, unsigned& m, unsigned& d) {
   if (m <= 2) ++y;
 }
 
+int64_t daysFromCivil(int64_t y, unsigned m, unsigned d) {
+  y -= m <= 2;
+  int64_t era = (y >= 0 ? y : y - 399) / 400;
+  auto yoe = static_cast<unsigned>(y - era * 400);
+  unsigned doy = (153 * (m > 2 ? m - 3 : m + 9) + 2) / 5 + d - 1;
+  unsigned doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+  return era * 146097 + static_cast<int64_t>(doe) - 719468;
+}
+
+namespace {
+
 std::string two(unsigned v) { return (v < 10 ? "0" : "") + std::to_string(v); }
 
 std::string dateText(int64_t ns) {
   int64_t days = ns >= 0 ? ns / 86'400'000'000'000 : -((-ns + 86'399'999'999'999) / 86'400'000'000'000);
   int64_t y;
   unsigned m, d;
-  civil(days, y, m, d);
+  civilFromDays(days, y, m, d);
   return std::to_string(y) + "-" + two(m) + "-" + two(d);
 }
 
@@ -180,6 +193,55 @@ std::string hex(uint64_t v) {
 }
 
 }  // namespace
+
+std::string formatDate(int64_t ns) { return dateText(ns); }
+std::string formatTimeOfDay(int64_t ns) { return todText(ns); }
+
+bool parseDateText(std::string_view text, char kind, int64_t& ns) {
+  std::string t = asciiUpper(text);
+  size_t hash = t.find('#');
+  if (hash != std::string::npos) {
+    std::string pre = t.substr(0, hash);
+    if (pre == "D" || pre == "DATE" || pre == "LDATE" || pre == "LD") kind = 'D';
+    else if (pre == "TOD" || pre == "TIME_OF_DAY" || pre == "LTOD" || pre == "LTIME_OF_DAY") kind = 'T';
+    else if (pre == "DT" || pre == "DATE_AND_TIME" || pre == "LDT" || pre == "LDATE_AND_TIME") kind = 'S';
+    else return false;
+    t = t.substr(hash + 1);
+  }
+  auto number = [&](size_t& i, int64_t& v) {
+    size_t start = i;
+    v = 0;
+    while (i < t.size() && t[i] >= '0' && t[i] <= '9') v = v * 10 + (t[i++] - '0');
+    return i > start;
+  };
+  size_t i = 0;
+  int64_t days = 0, tod = 0;
+  if (kind == 'D' || kind == 'S') {
+    int64_t y, m, d;
+    if (!number(i, y) || i >= t.size() || t[i++] != '-' || !number(i, m) || i >= t.size() || t[i++] != '-' || !number(i, d)) return false;
+    if (m < 1 || m > 12 || d < 1 || d > 31) return false;
+    days = daysFromCivil(y, static_cast<unsigned>(m), static_cast<unsigned>(d));
+    if (kind == 'S' && (i >= t.size() || t[i++] != '-')) return false;
+  }
+  if (kind == 'T' || kind == 'S') {
+    int64_t h, mi, sec = 0;
+    if (!number(i, h) || i >= t.size() || t[i++] != ':' || !number(i, mi)) return false;
+    if (i < t.size() && t[i] == ':') { ++i; if (!number(i, sec)) return false; }
+    int64_t frac = 0, scale = 1'000'000'000;
+    if (i < t.size() && t[i] == '.') {
+      ++i;
+      while (i < t.size() && t[i] >= '0' && t[i] <= '9') {
+        scale /= 10;
+        frac += (t[i++] - '0') * scale;
+      }
+    }
+    if (h > 23 || mi > 59 || sec > 59) return false;
+    tod = ((h * 60 + mi) * 60 + sec) * 1'000'000'000 + frac;
+  }
+  if (i != t.size()) return false;
+  ns = days * 86'400'000'000'000 + tod;
+  return true;
+}
 
 std::string formatReal(double v, bool single) {
   if (std::isnan(v)) return "NaN";

@@ -30,4 +30,13 @@ std::string formatValue(const uint8_t* p, const sema::Type* t, const sema::Layou
 // Shortest round-trip text of a REAL/LREAL with a '.' or an exponent.
 std::string formatReal(double v, bool single);
 
+// Dates as nanoseconds since 1970-01-01 (proleptic Gregorian calendar).
+std::string formatDate(int64_t ns);          // 2024-02-29
+std::string formatTimeOfDay(int64_t ns);     // 12:30:15.5
+int64_t daysFromCivil(int64_t y, unsigned m, unsigned d);
+void civilFromDays(int64_t days, int64_t& y, unsigned& m, unsigned& d);
+// Parses D#/DATE#/LDATE#, TOD#/TIME_OF_DAY#/LTOD#, DT#/DATE_AND_TIME#/LDT# text (the
+// prefix optional when `kind` says which: 'D', 'T' (time of day), 'S' (date and time)).
+bool parseDateText(std::string_view text, char kind, int64_t& ns);
+
 }  // namespace stc::vm

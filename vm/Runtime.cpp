@@ -6,8 +6,10 @@
 #include <string>
 #include <algorithm>
 #include <cstdlib>
+#include <vector>
 
 #include "codegen/CodeGen.h"
+#include "basic/SourceManager.h"
 #include "vm/Image.h"
 #include "vm/Scheduler.h"
 #include "vm/Time.h"
@@ -168,6 +170,159 @@ int64_t __stc_str_to_int(const char* s) {
   return neg ? -static_cast<int64_t>(v) : static_cast<int64_t>(v);
 }
 double __stc_str_to_real(const char* s) { return std::strtod(s, nullptr); }
+int32_t __stc_str_is_true(const char* s) {
+  while (*s == ' ') ++s;
+  return (s[0] == 'T' || s[0] == 't') && (s[1] == 'R' || s[1] == 'r') && (s[2] == 'U' || s[2] == 'u') && (s[3] == 'E' || s[3] == 'e') && !s[4];
+}
+
+// ---- BCD: one decimal digit per nibble ----
+uint64_t __stc_to_bcd(uint64_t v) {
+  uint64_t r = 0;
+  for (int shift = 0; v && shift < 64; shift += 4, v /= 10) r |= (v % 10) << shift;
+  return r;
+}
+uint64_t __stc_from_bcd(uint64_t v) {
+  uint64_t r = 0, scale = 1;
+  for (; v; v >>= 4, scale *= 10) r += (v & 15) * scale;
+  return r;
+}
+int32_t __stc_is_valid_bcd(uint64_t v) {
+  for (; v; v >>= 4)
+    if ((v & 15) > 9) return 0;
+  return 1;
+}
+
+// ---- dates (ns since 1970-01-01) ----
+int64_t __stc_date_make(int64_t y, int64_t m, int64_t d) {
+  return stc::vm::daysFromCivil(y, static_cast<unsigned>(m), static_cast<unsigned>(d)) * 86'400'000'000'000;
+}
+int64_t __stc_tod_make(int64_t h, int64_t m, int64_t s, int64_t ms) { return (((h * 60 + m) * 60 + s) * 1000 + ms) * 1'000'000; }
+// out: year, month, day, hour, minute, second, millisecond
+void __stc_date_split(int64_t ns, int64_t* out) {
+  const int64_t day = 86'400'000'000'000;
+  int64_t days = ns >= 0 ? ns / day : -((-ns + day - 1) / day);
+  int64_t rest = ns - days * day;
+  int64_t y;
+  unsigned m, d;
+  stc::vm::civilFromDays(days, y, m, d);
+  out[0] = y;
+  out[1] = m;
+  out[2] = d;
+  out[3] = rest / 3'600'000'000'000;
+  out[4] = rest / 60'000'000'000 % 60;
+  out[5] = rest / 1'000'000'000 % 60;
+  out[6] = rest / 1'000'000 % 1000;
+}
+// 0 = Sunday (IEC 61131-3).
+int64_t __stc_day_of_week(int64_t ns) {
+  const int64_t day = 86'400'000'000'000;
+  int64_t days = ns >= 0 ? ns / day : -((-ns + day - 1) / day);
+  int64_t w = (days + 4) % 7;   // 1970-01-01 was a Thursday
+  return w < 0 ? w + 7 : w;
+}
+// kind: 'D' date, 'T' time of day, 'S' date and time; isLong: the L* prefix.
+void __stc_date_to_str(char* dst, int64_t cap, int64_t ns, int32_t kind, int32_t isLong) {
+  std::string r = kind == 'D' ? std::string(isLong ? "LDATE#" : "D#") + stc::vm::formatDate(ns)
+                  : kind == 'T' ? std::string(isLong ? "LTOD#" : "TOD#") + stc::vm::formatTimeOfDay(ns)
+                                : std::string(isLong ? "LDT#" : "DT#") + stc::vm::formatDate(ns) + "-" + stc::vm::formatTimeOfDay(ns);
+  build(dst, cap, r);
+}
+int64_t __stc_str_to_date(const char* s, int32_t kind) {
+  int64_t ns = 0;
+  return stc::vm::parseDateText(s, static_cast<char>(kind), ns) ? ns : 0;
+}
+int64_t __stc_str_to_time(const char* s) {
+  int64_t ns = 0;
+  return stc::vm::parseIecDuration(s, ns) ? ns : 0;
+}
+
+// ---- STRING <-> WSTRING ----
+// STRING bytes are UTF-8 when valid, else Latin-1; WSTRING is UTF-16.
+void __stc_str_to_wstr(char16_t* dst, int64_t cap, const char* src) {
+  std::string b(src);
+  std::vector<uint32_t> cps;
+  bool utf8 = stc::isValidUtf8(b);
+  for (size_t i = 0; i < b.size();) {
+    auto c = static_cast<unsigned char>(b[i]);
+    uint32_t cp = c;
+    int n = (!utf8 || c < 0x80) ? 0 : c >= 0xF0 ? 3 : c >= 0xE0 ? 2 : 1;
+    if (n) cp = c & (0x3F >> n);
+    ++i;
+    for (int k = 0; k < n && i < b.size(); ++k, ++i) cp = (cp << 6) | (static_cast<unsigned char>(b[i]) & 63);
+    cps.push_back(cp);
+  }
+  std::u16string w;
+  for (uint32_t cp : cps) {
+    if (cp >= 0x10000) { cp -= 0x10000; w.push_back(static_cast<char16_t>(0xD800 + (cp >> 10))); w.push_back(static_cast<char16_t>(0xDC00 + (cp & 0x3FF))); }
+    else w.push_back(static_cast<char16_t>(cp));
+  }
+  size_t k = std::min<size_t>(w.size(), static_cast<size_t>(cap));
+  std::memcpy(dst, w.data(), k * 2);
+  dst[k] = 0;
+}
+void __stc_wstr_to_str(char* dst, int64_t cap, const char16_t* src) {
+  std::vector<uint32_t> cps;
+  for (size_t i = 0; src[i]; ++i) {
+    uint32_t u = src[i];
+    if (u >= 0xD800 && u < 0xDC00 && src[i + 1] >= 0xDC00 && src[i + 1] < 0xE000) { u = 0x10000 + ((u - 0xD800) << 10) + (src[i + 1] - 0xDC00); ++i; }
+    cps.push_back(u);
+  }
+  bool latin1 = true;
+  for (uint32_t cp : cps) latin1 = latin1 && cp <= 0xFF;
+  std::string r;
+  for (uint32_t cp : cps) {
+    if (latin1) { r.push_back(static_cast<char>(cp)); continue; }
+    if (cp < 0x80) r.push_back(static_cast<char>(cp));
+    else if (cp < 0x800) { r.push_back(static_cast<char>(0xC0 | (cp >> 6))); r.push_back(static_cast<char>(0x80 | (cp & 63))); }
+    else if (cp < 0x10000) { r.push_back(static_cast<char>(0xE0 | (cp >> 12))); r.push_back(static_cast<char>(0x80 | ((cp >> 6) & 63))); r.push_back(static_cast<char>(0x80 | (cp & 63))); }
+    else { r.push_back(static_cast<char>(0xF0 | (cp >> 18))); r.push_back(static_cast<char>(0x80 | ((cp >> 12) & 63))); r.push_back(static_cast<char>(0x80 | ((cp >> 6) & 63))); r.push_back(static_cast<char>(0x80 | (cp & 63))); }
+  }
+  build(dst, cap, r);
+}
+
+// ---- WSTRING functions: the same rules as the STRING ones, in UTF-16 units ----
+static void wbuild(char16_t* dst, int64_t cap, const std::u16string& r) {
+  size_t k = std::min<size_t>(r.size(), static_cast<size_t>(cap));
+  std::memcpy(dst, r.data(), k * 2);
+  dst[k] = 0;
+}
+void __stc_wstr_left(char16_t* dst, int64_t cap, const char16_t* s, int64_t n) {
+  std::u16string a(s);
+  wbuild(dst, cap, a.substr(0, n < 0 ? 0 : std::min<size_t>(static_cast<size_t>(n), a.size())));
+}
+void __stc_wstr_right(char16_t* dst, int64_t cap, const char16_t* s, int64_t n) {
+  std::u16string a(s);
+  size_t k = n < 0 ? 0 : std::min<size_t>(static_cast<size_t>(n), a.size());
+  wbuild(dst, cap, a.substr(a.size() - k));
+}
+void __stc_wstr_mid(char16_t* dst, int64_t cap, const char16_t* s, int64_t n, int64_t pos) {
+  std::u16string a(s);
+  if (pos < 1 || static_cast<size_t>(pos) > a.size() || n <= 0) { wbuild(dst, cap, u""); return; }
+  wbuild(dst, cap, a.substr(static_cast<size_t>(pos - 1), static_cast<size_t>(n)));
+}
+int64_t __stc_wstr_find(const char16_t* s1, const char16_t* s2) {
+  std::u16string a(s1), b(s2);
+  if (b.empty()) return 0;
+  size_t p = a.find(b);
+  return p == std::u16string::npos ? 0 : static_cast<int64_t>(p) + 1;
+}
+void __stc_wstr_insert(char16_t* dst, int64_t cap, const char16_t* s1, const char16_t* s2, int64_t pos) {
+  std::u16string a(s1), b(s2);
+  size_t p = pos < 0 ? 0 : std::min<size_t>(static_cast<size_t>(pos), a.size());
+  wbuild(dst, cap, a.substr(0, p) + b + a.substr(p));
+}
+void __stc_wstr_delete(char16_t* dst, int64_t cap, const char16_t* s, int64_t n, int64_t pos) {
+  std::u16string a(s);
+  if (pos >= 1 && static_cast<size_t>(pos) <= a.size() && n > 0) a.erase(static_cast<size_t>(pos - 1), static_cast<size_t>(n));
+  wbuild(dst, cap, a);
+}
+void __stc_wstr_replace(char16_t* dst, int64_t cap, const char16_t* s1, const char16_t* s2, int64_t n, int64_t pos) {
+  std::u16string a(s1), b(s2);
+  if (pos < 1) pos = 1;
+  size_t p = std::min<size_t>(static_cast<size_t>(pos - 1), a.size());
+  size_t k = n < 0 ? 0 : std::min<size_t>(static_cast<size_t>(n), a.size() - p);
+  wbuild(dst, cap, a.substr(0, p) + b + a.substr(p + k));
+}
 
 void __stc_wstr_assign(char16_t* dst, int64_t cap, const char16_t* src) {
   size_t n = std::min<size_t>(length(src), static_cast<size_t>(cap));
@@ -216,6 +371,26 @@ std::map<std::string, void*> runtimeSymbols() {
   STC_SYM(__stc_time_to_str);
   STC_SYM(__stc_str_to_int);
   STC_SYM(__stc_str_to_real);
+  STC_SYM(__stc_str_is_true);
+  STC_SYM(__stc_to_bcd);
+  STC_SYM(__stc_from_bcd);
+  STC_SYM(__stc_is_valid_bcd);
+  STC_SYM(__stc_date_make);
+  STC_SYM(__stc_tod_make);
+  STC_SYM(__stc_date_split);
+  STC_SYM(__stc_day_of_week);
+  STC_SYM(__stc_date_to_str);
+  STC_SYM(__stc_str_to_date);
+  STC_SYM(__stc_str_to_time);
+  STC_SYM(__stc_str_to_wstr);
+  STC_SYM(__stc_wstr_to_str);
+  STC_SYM(__stc_wstr_left);
+  STC_SYM(__stc_wstr_right);
+  STC_SYM(__stc_wstr_mid);
+  STC_SYM(__stc_wstr_find);
+  STC_SYM(__stc_wstr_insert);
+  STC_SYM(__stc_wstr_delete);
+  STC_SYM(__stc_wstr_replace);
   STC_SYM(__stc_wstr_assign);
   STC_SYM(__stc_wstr_append);
   STC_SYM(__stc_wstr_cmp);
@@ -226,6 +401,7 @@ std::map<std::string, void*> runtimeSymbols() {
   m["memcpy"] = reinterpret_cast<void*>(static_cast<void* (*)(void*, const void*, size_t)>(&std::memcpy));
   m["memmove"] = reinterpret_cast<void*>(static_cast<void* (*)(void*, const void*, size_t)>(&std::memmove));
   m["memset"] = reinterpret_cast<void*>(static_cast<void* (*)(void*, int, size_t)>(&std::memset));
+  m["memcmp"] = reinterpret_cast<void*>(static_cast<int (*)(const void*, const void*, size_t)>(&std::memcmp));
   using F = float (*)(float);
   using D = double (*)(double);
   using F2 = float (*)(float, float);

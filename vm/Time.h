@@ -23,4 +23,8 @@ std::string formatIecTime(Time t, std::string_view prefix = "T#");
 // `0.001`, `1.5`, `-2.000000001` (trace time stamps).
 std::string formatSeconds(Time t);
 
+// Parses a duration: T#1s500ms, TIME#-2m, LTIME#5us, 1d2h, 250ms, 1.5s (a
+// fraction on the last component).  False if the text is not a duration.
+bool parseIecDuration(std::string_view text, Time& out);
+
 }  // namespace stc::vm

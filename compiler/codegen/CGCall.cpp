@@ -302,28 +302,85 @@ llvm::Value* CodeGen::arg(const CallExpr* e, size_t i, const Type* to) {
   return emitValue(a, to);
 }
 
-// <T>_TO_STRING: decimal integers, shortest REAL, TRUE/FALSE, T#... .
-llvm::Value* CodeGen::toStringValue(const Expr* a, const Type* rt) {
-  const Type* at = strip(a->type);
-  Address tmp = temporary(rt, "str");
-  llvm::Value* cap = b_.getInt64(strip(rt)->length);
+// Conversions to and from STRING/WSTRING: decimal integers, shortest REAL,
+// TRUE/FALSE, T#..., D#/TOD#/DT#...; parsing the same texts back; STRING <->
+// WSTRING (UTF-8/Latin-1 <-> UTF-16).  WSTRING goes through a STRING.
+llvm::Value* CodeGen::stringConversion(const Expr* a, const Type* rt, const Expr* at) {
+  const Type* from = strip(a->type);
+  const Type* to = strip(rt);
   llvm::Type* v = llvm::Type::getVoidTy(ctx_);
-  llvm::Value* x = emitValue(a, nullptr);
-  if (at->isBool()) {
-    b_.CreateCall(runtime("__stc_bool_to_str", v, {ptrTy_, i64_, i32_}), {tmp.ptr, cap, b_.CreateZExt(x, i32_)});
-  } else if (at->isReal()) {
-    b_.CreateCall(runtime("__stc_real_to_str", v, {ptrTy_, i64_, llvm::Type::getDoubleTy(ctx_), i32_}),
-                  {tmp.ptr, cap, b_.CreateFPExt(x, llvm::Type::getDoubleTy(ctx_)), b_.getInt32(at->kind == TypeKind::Real)});
-  } else if (at->isDuration()) {
-    b_.CreateCall(runtime("__stc_time_to_str", v, {ptrTy_, i64_, i64_, i32_}), {tmp.ptr, cap, x, b_.getInt32(at->kind == TypeKind::LTime)});
-  } else if (at->isInteger() || at->isBitString() || at->isChar()) {
-    bool sgn = at->isSignedInt();
-    b_.CreateCall(runtime("__stc_int_to_str", v, {ptrTy_, i64_, i64_, i32_}),
-                  {tmp.ptr, cap, sgn ? b_.CreateSExt(x, i64_) : b_.CreateZExtOrBitCast(x, i64_), b_.getInt32(sgn)});
-  } else {
-    error(a->range, "conversion of '" + at->name + "' to STRING is not implemented yet (see docs/status.md)");
+  auto narrowOf = [&](llvm::Value* wide, uint32_t len) {
+    Address tmp = temporary(model_.types->string(std::max<uint32_t>(len * 4, 1), false), "narrow");
+    b_.CreateCall(runtime("__stc_wstr_to_str", v, {ptrTy_, i64_, ptrTy_}), {tmp.ptr, b_.getInt64(std::max<uint32_t>(len * 4, 1)), wide});
+    return tmp.ptr;
+  };
+  if (from->isString() && to->isString()) {
+    if (from->kind == to->kind) return emitValue(a, nullptr);
+    Address tmp = temporary(rt, "conv");
+    llvm::Value* src = emitValue(a, nullptr);
+    if (to->kind == TypeKind::WString)
+      b_.CreateCall(runtime("__stc_str_to_wstr", v, {ptrTy_, i64_, ptrTy_}), {tmp.ptr, b_.getInt64(to->length), src});
+    else
+      b_.CreateCall(runtime("__stc_wstr_to_str", v, {ptrTy_, i64_, ptrTy_}), {tmp.ptr, b_.getInt64(to->length), src});
+    return tmp.ptr;
   }
-  return tmp.ptr;
+  if (to->isString()) {
+    // Build the text as a STRING, then widen for WSTRING.
+    const Type* narrow = to->kind == TypeKind::String ? rt : model_.types->string(std::max<uint32_t>(to->length * 4, 64), false);
+    Address tmp = temporary(narrow, "str");
+    llvm::Value* cap = b_.getInt64(strip(narrow)->length);
+    llvm::Value* x = emitValue(a, nullptr);
+    if (from->isBool()) {
+      b_.CreateCall(runtime("__stc_bool_to_str", v, {ptrTy_, i64_, i32_}), {tmp.ptr, cap, b_.CreateZExt(x, i32_)});
+    } else if (from->isReal()) {
+      b_.CreateCall(runtime("__stc_real_to_str", v, {ptrTy_, i64_, llvm::Type::getDoubleTy(ctx_), i32_}),
+                    {tmp.ptr, cap, b_.CreateFPExt(x, llvm::Type::getDoubleTy(ctx_)), b_.getInt32(from->kind == TypeKind::Real)});
+    } else if (from->isDuration()) {
+      b_.CreateCall(runtime("__stc_time_to_str", v, {ptrTy_, i64_, i64_, i32_}), {tmp.ptr, cap, x, b_.getInt32(from->kind == TypeKind::LTime)});
+    } else if (from->isDate()) {
+      int kind = (from->kind == TypeKind::Date || from->kind == TypeKind::LDate) ? 'D' : (from->kind == TypeKind::Tod || from->kind == TypeKind::LTod) ? 'T' : 'S';
+      bool isLong = from->kind == TypeKind::LDate || from->kind == TypeKind::LTod || from->kind == TypeKind::LDT;
+      b_.CreateCall(runtime("__stc_date_to_str", v, {ptrTy_, i64_, i64_, i32_, i32_}), {tmp.ptr, cap, x, b_.getInt32(kind), b_.getInt32(isLong)});
+    } else if (from->isChar()) {
+      llvm::Type* ct = from->kind == TypeKind::WChar ? i16_ : i8_;
+      Address one = temporary(model_.types->string(1, from->kind == TypeKind::WChar), "chr");
+      b_.CreateStore(x, one.ptr);
+      b_.CreateStore(llvm::ConstantInt::get(ct, 0), b_.CreateConstInBoundsGEP1_64(ct, one.ptr, 1));
+      llvm::Value* src = from->kind == TypeKind::WChar ? narrowOf(one.ptr, 1) : one.ptr;
+      b_.CreateCall(runtime("__stc_str_assign", v, {ptrTy_, i64_, ptrTy_}), {tmp.ptr, cap, src});
+    } else if (from->isInteger() || from->isBitString()) {
+      bool sgn = from->isSignedInt();
+      b_.CreateCall(runtime("__stc_int_to_str", v, {ptrTy_, i64_, i64_, i32_}),
+                    {tmp.ptr, cap, sgn ? b_.CreateSExt(x, i64_) : b_.CreateZExtOrBitCast(x, i64_), b_.getInt32(sgn)});
+    } else {
+      error(a->range, "conversion of '" + from->name + "' to " + to->name + " is not supported");
+      return tmp.ptr;
+    }
+    if (to->kind == TypeKind::String) return tmp.ptr;
+    Address w = temporary(rt, "wstr");
+    b_.CreateCall(runtime("__stc_str_to_wstr", v, {ptrTy_, i64_, ptrTy_}), {w.ptr, b_.getInt64(to->length), tmp.ptr});
+    return w.ptr;
+  }
+  // From text: parse.
+  llvm::Value* p = emitValue(a, nullptr);
+  if (from->kind == TypeKind::WString) p = narrowOf(p, from->length);
+  if (to->isReal())
+    return convert(b_.CreateCall(runtime("__stc_str_to_real", llvm::Type::getDoubleTy(ctx_), {ptrTy_}), {p}), elementary(TypeKind::LReal), rt, at);
+  if (to->isDuration()) return b_.CreateCall(runtime("__stc_str_to_time", i64_, {ptrTy_}), {p});
+  if (to->isDate()) {
+    int kind = (to->kind == TypeKind::Date || to->kind == TypeKind::LDate) ? 'D' : (to->kind == TypeKind::Tod || to->kind == TypeKind::LTod) ? 'T' : 'S';
+    return b_.CreateCall(runtime("__stc_str_to_date", i64_, {ptrTy_, i32_}), {p, b_.getInt32(kind)});
+  }
+  if (to->isBool()) {
+    // 'TRUE' (any case) or a non-zero number.
+    llvm::Value* n = b_.CreateCall(runtime("__stc_str_to_int", i64_, {ptrTy_}), {p});
+    llvm::Value* t = b_.CreateICmpEQ(b_.CreateCall(runtime("__stc_str_is_true", i32_, {ptrTy_}), {p}), b_.getInt32(1));
+    return b_.CreateOr(t, b_.CreateICmpNE(n, b_.getInt64(0)));
+  }
+  if (to->isInteger() || to->isBitString() || to->isChar())
+    return b_.CreateTrunc(b_.CreateCall(runtime("__stc_str_to_int", i64_, {ptrTy_}), {p}), valueType(rt));
+  error(a->range, "conversion of '" + from->name + "' to '" + to->name + "' is not supported");
+  return llvm::UndefValue::get(valueType(rt));
 }
 
 llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
@@ -346,44 +403,90 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
       if (!a) return unsupported();
       const Type* at = strip(a->type);
       const Type* st = strip(rt);
-      if (st->kind == TypeKind::String && !isAggregate(at)) return toStringValue(a, rt);
-      if (at->kind == TypeKind::String && !isAggregate(st)) {
-        llvm::Value* p = emitValue(a, nullptr);
-        if (st->isReal()) return convert(b_.CreateCall(runtime("__stc_str_to_real", llvm::Type::getDoubleTy(ctx_), {ptrTy_}), {p}), elementary(TypeKind::LReal), rt, e);
-        if (st->isInteger() || st->isBitString())
-          return b_.CreateTrunc(b_.CreateCall(runtime("__stc_str_to_int", i64_, {ptrTy_}), {p}), valueType(rt));
-        return unsupported();
-      }
+      if (st->isString() || at->isString()) return stringConversion(a, rt, e);
       if (isAggregate(rt) || isAggregate(a->type)) {
-        if (a && isAggregate(rt) && strip(a->type)->kind == st->kind) return emitValue(a, nullptr);
+        if (isAggregate(rt) && at->kind == st->kind) return emitValue(a, nullptr);
         return unsupported();
       }
       return emitValue(a, rt);
     }
+    case sema::FRound: {
+      llvm::Value* v = arg(e, 0, rt);
+      return b_.CreateUnaryIntrinsic(llvm::Intrinsic::round, v);
+    }
+    case sema::FToBcd: case sema::FFromBcd: {
+      const Expr* a = argExpr(0);
+      llvm::Value* v = emitValue(a, nullptr);
+      bool sgn = strip(a->type)->isSignedInt();
+      llvm::Value* w = sgn ? b_.CreateSExtOrTrunc(v, i64_) : b_.CreateZExtOrTrunc(v, i64_);
+      llvm::Value* r = b_.CreateCall(runtime(fam == sema::FToBcd ? "__stc_to_bcd" : "__stc_from_bcd", i64_, {i64_}), {w});
+      return b_.CreateTrunc(r, valueType(rt));
+    }
+    case sema::FIsValid: {
+      llvm::Value* v = arg(e, 0, nullptr);
+      llvm::Value* mag = b_.CreateUnaryIntrinsic(llvm::Intrinsic::fabs, v);
+      return b_.CreateFCmpOLT(mag, llvm::ConstantFP::getInfinity(v->getType()));
+    }
+    case sema::FIsValidBcd: {
+      llvm::Value* v = b_.CreateZExtOrTrunc(arg(e, 0, nullptr), i64_);
+      return b_.CreateICmpNE(b_.CreateCall(runtime("__stc_is_valid_bcd", i32_, {i64_}), {v}), b_.getInt32(0));
+    }
+    case sema::FEndian: {
+      // The host is little-endian: TO_BIG_ENDIAN and BIG_ENDIAN_TO swap bytes.
+      llvm::Value* v = arg(e, 0, rt);
+      std::string up = asciiUpper(name);
+      bool swap = up == "TO_BIG_ENDIAN" || up == "BIG_ENDIAN_TO";
+      llvm::Type* ty = v->getType();
+      unsigned bits = ty->getPrimitiveSizeInBits();
+      if (!swap || bits <= 8) return v;
+      llvm::Type* it = llvm::IntegerType::get(ctx_, bits);
+      llvm::Value* x = ty->isIntegerTy() ? v : b_.CreateBitCast(v, it);
+      x = b_.CreateUnaryIntrinsic(llvm::Intrinsic::bswap, x);
+      return ty->isIntegerTy() ? x : b_.CreateBitCast(x, ty);
+    }
+    case sema::FBitAdr: {
+      // The bit address of a variable located in the process image.
+      const Expr* a = argExpr(0);
+      const Symbol* sym = nullptr;
+      if (auto* n = dyn_cast<NameExpr>(a)) sym = n->symbol;
+      else if (auto* m = dyn_cast<MemberExpr>(a)) sym = m->symbol;
+      auto it = sym && sym->var ? atViews_.find(sym->var) : atViews_.end();
+      if (it == atViews_.end()) {
+        error(a->range, "BITADR needs a variable located in the process image (AT %I, %Q or %M)");
+        return llvm::ConstantInt::get(valueType(rt), 0);
+      }
+      uint64_t bit = it->second.byteOffset * 8 + static_cast<uint64_t>(std::max(it->second.bit, 0));
+      return llvm::ConstantInt::get(valueType(rt), bit);
+    }
     case sema::FLeftRight: case sema::FMid: case sema::FInsert: case sema::FDelete: case sema::FReplace: {
       const Type* st = strip(rt);
-      if (st->kind != TypeKind::String) return unsupported();
+      if (!st->isString()) return unsupported();
+      bool wide = st->kind == TypeKind::WString;
       std::string up = asciiUpper(name);
+      if (up[0] == 'W') up = up.substr(1);
+      auto fn = [&](const char* base) { return std::string(wide ? "__stc_wstr_" : "__stc_str_") + base; };
       Address tmp = temporary(rt, "str");
       llvm::Value* cap = b_.getInt64(st->length);
       auto s0 = [&](size_t i) { return emitValue(argExpr(i), nullptr); };
       auto n0 = [&](size_t i) { return emitValue(argExpr(i), elementary(TypeKind::LInt)); };
       llvm::Type* v = llvm::Type::getVoidTy(ctx_);
       if (up == "LEFT" || up == "RIGHT")
-        b_.CreateCall(runtime(up == "LEFT" ? "__stc_str_left" : "__stc_str_right", v, {ptrTy_, i64_, ptrTy_, i64_}), {tmp.ptr, cap, s0(0), n0(1)});
+        b_.CreateCall(runtime(fn(up == "LEFT" ? "left" : "right").c_str(), v, {ptrTy_, i64_, ptrTy_, i64_}), {tmp.ptr, cap, s0(0), n0(1)});
       else if (up == "MID")
-        b_.CreateCall(runtime("__stc_str_mid", v, {ptrTy_, i64_, ptrTy_, i64_, i64_}), {tmp.ptr, cap, s0(0), n0(1), n0(2)});
+        b_.CreateCall(runtime(fn("mid").c_str(), v, {ptrTy_, i64_, ptrTy_, i64_, i64_}), {tmp.ptr, cap, s0(0), n0(1), n0(2)});
       else if (up == "INSERT")
-        b_.CreateCall(runtime("__stc_str_insert", v, {ptrTy_, i64_, ptrTy_, ptrTy_, i64_}), {tmp.ptr, cap, s0(0), s0(1), n0(2)});
+        b_.CreateCall(runtime(fn("insert").c_str(), v, {ptrTy_, i64_, ptrTy_, ptrTy_, i64_}), {tmp.ptr, cap, s0(0), s0(1), n0(2)});
       else if (up == "DELETE")
-        b_.CreateCall(runtime("__stc_str_delete", v, {ptrTy_, i64_, ptrTy_, i64_, i64_}), {tmp.ptr, cap, s0(0), n0(1), n0(2)});
+        b_.CreateCall(runtime(fn("delete").c_str(), v, {ptrTy_, i64_, ptrTy_, i64_, i64_}), {tmp.ptr, cap, s0(0), n0(1), n0(2)});
       else
-        b_.CreateCall(runtime("__stc_str_replace", v, {ptrTy_, i64_, ptrTy_, ptrTy_, i64_, i64_}), {tmp.ptr, cap, s0(0), s0(1), n0(2), n0(3)});
+        b_.CreateCall(runtime(fn("replace").c_str(), v, {ptrTy_, i64_, ptrTy_, ptrTy_, i64_, i64_}), {tmp.ptr, cap, s0(0), s0(1), n0(2), n0(3)});
       return tmp.ptr;
     }
     case sema::FFind: {
-      if (strip(argExpr(0)->type)->kind != TypeKind::String) return unsupported();
-      llvm::Value* r = b_.CreateCall(runtime("__stc_str_find", i64_, {ptrTy_, ptrTy_}), {emitValue(argExpr(0), nullptr), emitValue(argExpr(1), nullptr)});
+      const Type* at = strip(argExpr(0)->type);
+      if (!at->isString()) return unsupported();
+      const char* f = at->kind == TypeKind::WString ? "__stc_wstr_find" : "__stc_str_find";
+      llvm::Value* r = b_.CreateCall(runtime(f, i64_, {ptrTy_, ptrTy_}), {emitValue(argExpr(0), nullptr), emitValue(argExpr(1), nullptr)});
       return b_.CreateTrunc(r, valueType(rt));
     }
     case sema::FTrunc: {
@@ -562,6 +665,40 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
           if (a.param && asciiUpper(a.param->name) == pname) return a.value;
         return nullptr;
       };
+      auto num = [&](const char* pname) -> llvm::Value* {
+        const Expr* x = input(pname);
+        return x ? emitValue(x, elementary(TypeKind::LInt)) : static_cast<llvm::Value*>(b_.getInt64(0));
+      };
+      if (up == "CONCAT_DATE_TOD" || up == "CONCAT_LDATE_LTOD") {
+        llvm::Value* d = emitValue(input("DATE"), nullptr);
+        llvm::Value* t = emitValue(input("TOD"), nullptr);
+        return b_.CreateAdd(d, t);
+      }
+      if (up == "CONCAT_DATE" || up == "CONCAT_LDATE" || up == "CONCAT_DT" || up == "CONCAT_LDT") {
+        llvm::Value* d = b_.CreateCall(runtime("__stc_date_make", i64_, {i64_, i64_, i64_}), {num("YEAR"), num("MONTH"), num("DAY")});
+        if (up == "CONCAT_DATE" || up == "CONCAT_LDATE") return d;
+        llvm::Value* t = b_.CreateCall(runtime("__stc_tod_make", i64_, {i64_, i64_, i64_, i64_}), {num("HOUR"), num("MINUTE"), num("SECOND"), num("MILLISECOND")});
+        return b_.CreateAdd(d, t);
+      }
+      if (up == "CONCAT_TOD" || up == "CONCAT_LTOD")
+        return b_.CreateCall(runtime("__stc_tod_make", i64_, {i64_, i64_, i64_, i64_}), {num("HOUR"), num("MINUTE"), num("SECOND"), num("MILLISECOND")});
+      if (up == "DAY_OF_WEEK")
+        return b_.CreateTrunc(b_.CreateCall(runtime("__stc_day_of_week", i64_, {i64_}), {emitValue(input("IN"), nullptr)}), valueType(rt));
+      if (up.rfind("SPLIT_", 0) == 0) {
+        auto* parts = fs_->allocaBuilder->CreateAlloca(llvm::ArrayType::get(i64_, 7), nullptr, "split");
+        b_.CreateCall(runtime("__stc_date_split", llvm::Type::getVoidTy(ctx_), {i64_, ptrTy_}), {emitValue(input("IN"), nullptr), parts});
+        static const char* names[] = {"YEAR", "MONTH", "DAY", "HOUR", "MINUTE", "SECOND", "MILLISECOND"};
+        for (const Argument& a : e->args) {
+          if (a.kind != Argument::Output || !a.value || !a.param) continue;
+          for (int k = 0; k < 7; ++k)
+            if (asciiUpper(a.param->name) == names[k]) {
+              llvm::Value* v = b_.CreateAlignedLoad(i64_, b_.CreateConstInBoundsGEP1_64(i64_, parts, static_cast<uint64_t>(k)), llvm::MaybeAlign(8));
+              Address dst = emitAddr(a.value);
+              store(dst, convert(v, elementary(TypeKind::LInt), dst.type, a.value));
+            }
+        }
+        return nullptr;
+      }
       if (up.rfind("ADD_", 0) == 0 || up.rfind("SUB_", 0) == 0 || up.rfind("MUL_", 0) == 0 || up.rfind("DIV_", 0) == 0) {
         const Expr* a = input("IN1");
         const Expr* b = input("IN2");
@@ -578,11 +715,13 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
       if (up == "MEMCPY" || up == "MEMMOVE" || up == "MEMSET" || up == "MEMCMP") {
         const Expr* n = input("N");
         llvm::Value* count = n ? emitValue(n, elementary(TypeKind::ULInt)) : b_.getInt64(0);
+        // The byte functions return the number of bytes (CODESYS MemUtils).
+        llvm::Value* result = rt && rt->kind != TypeKind::Void && !isAggregate(rt) ? b_.CreateTrunc(count, valueType(rt)) : nullptr;
         if (up == "MEMSET") {
           llvm::Value* dst = emitValue(input("PDEST"), nullptr);
           llvm::Value* v = b_.CreateTrunc(emitValue(input("VALUE"), elementary(TypeKind::ULInt)), i8_);
           b_.CreateMemSet(dst, v, count, llvm::MaybeAlign(1));
-          return rt && rt->kind != TypeKind::Void && !isAggregate(rt) ? static_cast<llvm::Value*>(dst) : nullptr;
+          return result;
         }
         if (up == "MEMCMP") {
           llvm::Value* c = b_.CreateCall(runtime("memcmp", llvm::Type::getInt32Ty(ctx_), {ptrTy_, ptrTy_, i64_}),
@@ -593,7 +732,7 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
         llvm::Value* src = emitValue(input("PSRC"), nullptr);
         if (up == "MEMCPY") b_.CreateMemCpy(dst, llvm::MaybeAlign(1), src, llvm::MaybeAlign(1), count);
         else b_.CreateMemMove(dst, llvm::MaybeAlign(1), src, llvm::MaybeAlign(1), count);
-        return rt && rt->kind != TypeKind::Void && !isAggregate(rt) ? static_cast<llvm::Value*>(dst) : nullptr;
+        return result;
       }
       return unsupported();
     }

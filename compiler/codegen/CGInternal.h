@@ -159,7 +159,7 @@ public:
   llvm::Value* callPou(const ast::CallExpr* e, Symbol* target, llvm::Value* self, bool virtualCall, llvm::Value* fnPtr = nullptr);
   void callInstance(const ast::CallExpr* e, Symbol* fbType, llvm::Value* inst);
   llvm::Value* emitBuiltin(const ast::CallExpr* e);
-  llvm::Value* toStringValue(const ast::Expr* arg, const Type* resultType);
+  llvm::Value* stringConversion(const ast::Expr* arg, const Type* resultType, const ast::Expr* at);
   llvm::Value* arg(const ast::CallExpr* e, size_t i, const Type* to);
   llvm::Value* emitPropertyGet(const ast::Expr* e, Symbol* prop);
   void emitPropertySet(const ast::Expr* lhs, Symbol* prop, const ast::Expr* rhs);

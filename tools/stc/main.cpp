@@ -13,6 +13,7 @@
 #include "driver/Driver.h"
 #include "sema/Model.h"
 #include "vm/Controller.h"
+#include "vm/Time.h"
 #include "vm/testlib/TestLib.h"
 
 using namespace stc;
@@ -107,33 +108,7 @@ int runCheck(const CheckArgs& a) {
 }
 
 // Durations on the command line: T#1s500ms, 1s500ms, 10s, 250ms, 2m, 1h, 5us, 100ns.
-bool parseDuration(std::string text, int64_t& out) {
-  std::string t = asciiLower(text);
-  if (t.rfind("t#", 0) == 0) t = t.substr(2);
-  else if (t.rfind("time#", 0) == 0) t = t.substr(5);
-  if (t.empty()) return false;
-  int64_t total = 0;
-  size_t i = 0;
-  while (i < t.size()) {
-    size_t j = i;
-    while (j < t.size() && (std::isdigit(static_cast<unsigned char>(t[j])) || t[j] == '_')) ++j;
-    if (j == i) return false;
-    std::string digits;
-    for (size_t k = i; k < j; ++k)
-      if (t[k] != '_') digits += t[k];
-    int64_t n = std::stoll(digits);
-    size_t u = j;
-    while (u < t.size() && std::isalpha(static_cast<unsigned char>(t[u]))) ++u;
-    std::string unit = t.substr(j, u - j);
-    int64_t f = unit == "d" ? 86'400'000'000'000 : unit == "h" ? 3'600'000'000'000 : unit == "m" ? 60'000'000'000
-                : unit == "s" ? 1'000'000'000 : unit == "ms" ? 1'000'000 : unit == "us" ? 1'000 : unit == "ns" ? 1 : 0;
-    if (!f) return false;
-    total += n * f;
-    i = u;
-  }
-  out = total;
-  return true;
-}
+bool parseDuration(const std::string& text, int64_t& out) { return vm::parseIecDuration(text, out); }
 
 struct BuildArgs : CheckArgs {
   std::string output;
