@@ -25,6 +25,8 @@ int32_t c_sieve(int32_t n, bool* flags);
 int32_t c_bubble(int32_t* a);
 double c_realmath(int32_t n);
 int32_t c_strings(int32_t n);
+int32_t c_stringfuncs(int32_t n);
+int32_t c_conversions(int32_t n);
 }
 
 using namespace stc;
@@ -107,6 +109,16 @@ int main() {
          auto f = reinterpret_cast<int32_t (*)(int32_t)>(j.lookup("st.Strings", err));
          sink += f(1000000);
        }},
+      {"string functions (10^6 iterations)", [&] { sink += c_stringfuncs(1000000); },
+       [&](vm::Jit& j) {
+         auto f = reinterpret_cast<int32_t (*)(int32_t)>(j.lookup("st.StringFuncs", err));
+         sink += f(1000000);
+       }},
+      {"DINT<->STRING (10^6 iterations)", [&] { sink += c_conversions(1000000); },
+       [&](vm::Jit& j) {
+         auto f = reinterpret_cast<int32_t (*)(int32_t)>(j.lookup("st.Conversions", err));
+         sink += f(1000000);
+       }},
   };
   for (Row& r : rows) {
     double c = bestOf(7, r.c);
@@ -120,6 +132,9 @@ int main() {
     int32_t a = f(1000000, flags), b = c_sieve(1000000, flags);
     auto g = reinterpret_cast<double (*)(int32_t)>(withChecks->jit->lookup("st.RealMath", err));
     std::printf("check: primes below 1e6 ST %d C %d; REAL math ST %.17g C %.17g\n", a, b, g(1000), c_realmath(1000));
+    auto sf = reinterpret_cast<int32_t (*)(int32_t)>(withChecks->jit->lookup("st.StringFuncs", err));
+    auto cv = reinterpret_cast<int32_t (*)(int32_t)>(withChecks->jit->lookup("st.Conversions", err));
+    std::printf("check: string functions ST %d C %d; conversions ST %d C %d\n", sf(1000), c_stringfuncs(1000), cv(1000), c_conversions(1000));
   }
 
   // ---------------------------------------------------------------- 2. scheduler overhead

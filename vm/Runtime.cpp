@@ -6,6 +6,7 @@
 #include <string>
 #include <algorithm>
 #include <cstdlib>
+#include <initializer_list>
 #include <vector>
 
 #include "codegen/CodeGen.h"
@@ -31,11 +32,8 @@ namespace {
 
 template <typename C>
 size_t length(const C* s) {
-  size_t n = 0;
-  while (s[n]) ++n;
-  return n;
+  return std::char_traits<C>::length(s);   // strlen for STRING: vectorised by libc
 }
-
 }  // namespace
 
 extern "C" {
@@ -91,58 +89,114 @@ int32_t __stc_str_cmp(const char* a, const char* b) {
 int64_t __stc_str_len(const char* s) { return static_cast<int64_t>(length(s)); }
 
 // The standard string functions (IEC 61131-3 table 29; positions are
-// 1-based; out-of-range arguments clamp, as CODESYS does).
-void __stc_str_left(char* dst, int64_t cap, const char* s, int64_t n) {
+// 1-based; out-of-range arguments clamp, as CODESYS does).  Results are
+// composed from pieces of the arguments; the destination may alias an
+// argument (t := INSERT(t, ...)), so overlapping pieces are staged first.
+}  // extern "C"
+
+namespace {
+template <typename C>
+struct Piece {
+  const C* p;
+  size_t n;
+};
+
+template <typename C>
+void compose(C* dst, int64_t cap, std::initializer_list<Piece<C>> parts) {
+  size_t total = 0;
+  bool overlap = false;
+  for (const Piece<C>& x : parts) {
+    total += x.n;
+    overlap = overlap || (x.n && x.p < dst + cap + 1 && dst < x.p + x.n);
+  }
+  size_t keep = std::min<size_t>(total, static_cast<size_t>(cap));
+  C stage[512];
+  std::basic_string<C> big;
+  C* out = dst;
+  if (overlap) {
+    if (keep <= 512) out = stage;
+    else { big.resize(keep); out = big.data(); }
+  }
+  size_t at = 0;
+  for (const Piece<C>& x : parts) {
+    size_t k = std::min(x.n, keep - at);
+    std::memmove(out + at, x.p, k * sizeof(C));
+    at += k;
+  }
+  if (overlap) std::memcpy(dst, out, keep * sizeof(C));
+  dst[keep] = 0;
+}
+
+template <typename C>
+void strLeft(C* dst, int64_t cap, const C* s, int64_t n) {
+  size_t len = length(s);
+  compose<C>(dst, cap, {{s, n < 0 ? 0 : std::min<size_t>(static_cast<size_t>(n), len)}});
+}
+template <typename C>
+void strRight(C* dst, int64_t cap, const C* s, int64_t n) {
   size_t len = length(s);
   size_t k = n < 0 ? 0 : std::min<size_t>(static_cast<size_t>(n), len);
-  k = std::min<size_t>(k, static_cast<size_t>(cap));
-  std::memmove(dst, s, k);
-  dst[k] = 0;
+  compose<C>(dst, cap, {{s + len - k, k}});
 }
-void __stc_str_right(char* dst, int64_t cap, const char* s, int64_t n) {
-  size_t len = length(s);
-  size_t k = n < 0 ? 0 : std::min<size_t>(static_cast<size_t>(n), len);
-  size_t c = std::min<size_t>(k, static_cast<size_t>(cap));
-  std::memmove(dst, s + len - k, c);
-  dst[c] = 0;
-}
-void __stc_str_mid(char* dst, int64_t cap, const char* s, int64_t n, int64_t pos) {
+template <typename C>
+void strMid(C* dst, int64_t cap, const C* s, int64_t n, int64_t pos) {
   size_t len = length(s);
   if (pos < 1 || static_cast<size_t>(pos) > len || n <= 0) { dst[0] = 0; return; }
   size_t from = static_cast<size_t>(pos - 1);
-  size_t k = std::min<size_t>(static_cast<size_t>(n), len - from);
-  k = std::min<size_t>(k, static_cast<size_t>(cap));
-  std::memmove(dst, s + from, k);
-  dst[k] = 0;
+  compose<C>(dst, cap, {{s + from, std::min<size_t>(static_cast<size_t>(n), len - from)}});
 }
-int64_t __stc_str_find(const char* s1, const char* s2) {
-  if (!*s2) return 0;
-  const char* p = std::strstr(s1, s2);
-  return p ? (p - s1) + 1 : 0;
+template <typename C>
+int64_t strFind(const C* s1, const C* s2) {
+  size_t l1 = length(s1), l2 = length(s2);
+  if (!l2 || l2 > l1) return 0;
+  if constexpr (sizeof(C) == 1) {
+    const char* p = std::strstr(s1, s2);
+    return p ? p - s1 + 1 : 0;
+  }
+  for (size_t i = 0; i + l2 <= l1; ++i)
+    if (s1[i] == s2[0] && std::memcmp(s1 + i, s2, l2 * sizeof(C)) == 0) return static_cast<int64_t>(i) + 1;
+  return 0;
 }
+template <typename C>
+void strInsert(C* dst, int64_t cap, const C* a, const C* b, int64_t pos) {
+  size_t la = length(a), lb = length(b);
+  size_t p = pos < 0 ? 0 : std::min<size_t>(static_cast<size_t>(pos), la);
+  compose<C>(dst, cap, {{a, p}, {b, lb}, {a + p, la - p}});
+}
+template <typename C>
+void strDelete(C* dst, int64_t cap, const C* s, int64_t n, int64_t pos) {
+  size_t len = length(s);
+  if (pos < 1 || static_cast<size_t>(pos) > len || n <= 0) { compose<C>(dst, cap, {{s, len}}); return; }
+  size_t p = static_cast<size_t>(pos - 1);
+  size_t k = std::min<size_t>(static_cast<size_t>(n), len - p);
+  compose<C>(dst, cap, {{s, p}, {s + p + k, len - p - k}});
+}
+template <typename C>
+void strReplace(C* dst, int64_t cap, const C* a, const C* b, int64_t n, int64_t pos) {
+  size_t la = length(a), lb = length(b);
+  if (pos < 1) pos = 1;
+  size_t p = std::min<size_t>(static_cast<size_t>(pos - 1), la);
+  size_t k = n < 0 ? 0 : std::min<size_t>(static_cast<size_t>(n), la - p);
+  compose<C>(dst, cap, {{a, p}, {b, lb}, {a + p + k, la - p - k}});
+}
+
+}  // namespace
+
+extern "C" {
+
+void __stc_str_left(char* dst, int64_t cap, const char* s, int64_t n) { strLeft(dst, cap, s, n); }
+void __stc_str_right(char* dst, int64_t cap, const char* s, int64_t n) { strRight(dst, cap, s, n); }
+void __stc_str_mid(char* dst, int64_t cap, const char* s, int64_t n, int64_t pos) { strMid(dst, cap, s, n, pos); }
+int64_t __stc_str_find(const char* s1, const char* s2) { return strFind(s1, s2); }
+void __stc_str_insert(char* dst, int64_t cap, const char* s1, const char* s2, int64_t pos) { strInsert(dst, cap, s1, s2, pos); }
+void __stc_str_delete(char* dst, int64_t cap, const char* s, int64_t n, int64_t pos) { strDelete(dst, cap, s, n, pos); }
+void __stc_str_replace(char* dst, int64_t cap, const char* s1, const char* s2, int64_t n, int64_t pos) { strReplace(dst, cap, s1, s2, n, pos); }
+
 // Builds the result in a scratch buffer: dst may alias an argument.
 static void build(char* dst, int64_t cap, const std::string& r) {
   size_t k = std::min<size_t>(r.size(), static_cast<size_t>(cap));
   std::memcpy(dst, r.data(), k);
   dst[k] = 0;
-}
-void __stc_str_insert(char* dst, int64_t cap, const char* s1, const char* s2, int64_t pos) {
-  std::string a(s1), b(s2);
-  size_t p = pos < 0 ? 0 : std::min<size_t>(static_cast<size_t>(pos), a.size());
-  build(dst, cap, a.substr(0, p) + b + a.substr(p));
-}
-void __stc_str_delete(char* dst, int64_t cap, const char* s, int64_t n, int64_t pos) {
-  std::string a(s);
-  if (pos < 1 || static_cast<size_t>(pos) > a.size() || n <= 0) { build(dst, cap, a); return; }
-  a.erase(static_cast<size_t>(pos - 1), static_cast<size_t>(n));
-  build(dst, cap, a);
-}
-void __stc_str_replace(char* dst, int64_t cap, const char* s1, const char* s2, int64_t n, int64_t pos) {
-  std::string a(s1), b(s2);
-  if (pos < 1) pos = 1;
-  size_t p = std::min<size_t>(static_cast<size_t>(pos - 1), a.size());
-  size_t k = n < 0 ? 0 : std::min<size_t>(static_cast<size_t>(n), a.size() - p);
-  build(dst, cap, a.substr(0, p) + b + a.substr(p + k));
 }
 void __stc_int_to_str(char* dst, int64_t cap, int64_t v, int32_t isSigned) {
   build(dst, cap, isSigned ? std::to_string(v) : std::to_string(static_cast<uint64_t>(v)));
@@ -281,47 +335,14 @@ void __stc_wstr_to_str(char* dst, int64_t cap, const char16_t* src) {
 }
 
 // ---- WSTRING functions: the same rules as the STRING ones, in UTF-16 units ----
-static void wbuild(char16_t* dst, int64_t cap, const std::u16string& r) {
-  size_t k = std::min<size_t>(r.size(), static_cast<size_t>(cap));
-  std::memcpy(dst, r.data(), k * 2);
-  dst[k] = 0;
-}
-void __stc_wstr_left(char16_t* dst, int64_t cap, const char16_t* s, int64_t n) {
-  std::u16string a(s);
-  wbuild(dst, cap, a.substr(0, n < 0 ? 0 : std::min<size_t>(static_cast<size_t>(n), a.size())));
-}
-void __stc_wstr_right(char16_t* dst, int64_t cap, const char16_t* s, int64_t n) {
-  std::u16string a(s);
-  size_t k = n < 0 ? 0 : std::min<size_t>(static_cast<size_t>(n), a.size());
-  wbuild(dst, cap, a.substr(a.size() - k));
-}
-void __stc_wstr_mid(char16_t* dst, int64_t cap, const char16_t* s, int64_t n, int64_t pos) {
-  std::u16string a(s);
-  if (pos < 1 || static_cast<size_t>(pos) > a.size() || n <= 0) { wbuild(dst, cap, u""); return; }
-  wbuild(dst, cap, a.substr(static_cast<size_t>(pos - 1), static_cast<size_t>(n)));
-}
-int64_t __stc_wstr_find(const char16_t* s1, const char16_t* s2) {
-  std::u16string a(s1), b(s2);
-  if (b.empty()) return 0;
-  size_t p = a.find(b);
-  return p == std::u16string::npos ? 0 : static_cast<int64_t>(p) + 1;
-}
-void __stc_wstr_insert(char16_t* dst, int64_t cap, const char16_t* s1, const char16_t* s2, int64_t pos) {
-  std::u16string a(s1), b(s2);
-  size_t p = pos < 0 ? 0 : std::min<size_t>(static_cast<size_t>(pos), a.size());
-  wbuild(dst, cap, a.substr(0, p) + b + a.substr(p));
-}
-void __stc_wstr_delete(char16_t* dst, int64_t cap, const char16_t* s, int64_t n, int64_t pos) {
-  std::u16string a(s);
-  if (pos >= 1 && static_cast<size_t>(pos) <= a.size() && n > 0) a.erase(static_cast<size_t>(pos - 1), static_cast<size_t>(n));
-  wbuild(dst, cap, a);
-}
+void __stc_wstr_left(char16_t* dst, int64_t cap, const char16_t* s, int64_t n) { strLeft(dst, cap, s, n); }
+void __stc_wstr_right(char16_t* dst, int64_t cap, const char16_t* s, int64_t n) { strRight(dst, cap, s, n); }
+void __stc_wstr_mid(char16_t* dst, int64_t cap, const char16_t* s, int64_t n, int64_t pos) { strMid(dst, cap, s, n, pos); }
+int64_t __stc_wstr_find(const char16_t* s1, const char16_t* s2) { return strFind(s1, s2); }
+void __stc_wstr_insert(char16_t* dst, int64_t cap, const char16_t* s1, const char16_t* s2, int64_t pos) { strInsert(dst, cap, s1, s2, pos); }
+void __stc_wstr_delete(char16_t* dst, int64_t cap, const char16_t* s, int64_t n, int64_t pos) { strDelete(dst, cap, s, n, pos); }
 void __stc_wstr_replace(char16_t* dst, int64_t cap, const char16_t* s1, const char16_t* s2, int64_t n, int64_t pos) {
-  std::u16string a(s1), b(s2);
-  if (pos < 1) pos = 1;
-  size_t p = std::min<size_t>(static_cast<size_t>(pos - 1), a.size());
-  size_t k = n < 0 ? 0 : std::min<size_t>(static_cast<size_t>(n), a.size() - p);
-  wbuild(dst, cap, a.substr(0, p) + b + a.substr(p + k));
+  strReplace(dst, cap, s1, s2, n, pos);
 }
 
 void __stc_wstr_assign(char16_t* dst, int64_t cap, const char16_t* src) {

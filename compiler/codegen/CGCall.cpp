@@ -465,8 +465,11 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
       std::string up = asciiUpper(name);
       if (up[0] == 'W') up = up.substr(1);
       auto fn = [&](const char* base) { return std::string(wide ? "__stc_wstr_" : "__stc_str_") + base; };
-      Address tmp = temporary(rt, "str");
-      llvm::Value* cap = b_.getInt64(st->length);
+      // `t := MID(s, ...)`: the runtime writes straight into t (it copes with
+      // t being an argument too), saving the temporary and the copy.
+      Address tmp = stringDest_.ptr && strip(stringDest_.type)->kind == st->kind ? stringDest_ : temporary(rt, "str");
+      stringDest_ = Address{};
+      llvm::Value* cap = b_.getInt64(strip(tmp.type)->length);
       auto s0 = [&](size_t i) { return emitValue(argExpr(i), nullptr); };
       auto n0 = [&](size_t i) { return emitValue(argExpr(i), elementary(TypeKind::LInt)); };
       llvm::Type* v = llvm::Type::getVoidTy(ctx_);

@@ -689,7 +689,14 @@ void CodeGen::assign(Address dst, const Expr* src) {
       b_.CreateStore(llvm::ConstantInt::get(ct, 0), b_.CreateConstInBoundsGEP1_64(ct, tmp.ptr, 1));
       sp = tmp.ptr;
     } else {
+      if (auto* c = dyn_cast<CallExpr>(src)) {
+        int fam = sema::builtinFamily(c->target);
+        if (fam == sema::FLeftRight || fam == sema::FMid || fam == sema::FInsert || fam == sema::FDelete || fam == sema::FReplace)
+          stringDest_ = Address{dst.ptr, t};
+      }
       sp = emitValue(src, nullptr);
+      stringDest_ = Address{};
+      if (sp == dst.ptr) return;   // written in place
     }
     b_.CreateCall(runtime(wide ? "__stc_wstr_assign" : "__stc_str_assign", llvm::Type::getVoidTy(ctx_), {ptrTy_, i64_, ptrTy_}),
                   {dst.ptr, b_.getInt64(t->length), sp});

@@ -218,6 +218,7 @@ public:
   int vtableSlot(const Type* fb, const std::string& key);
   static std::string slotKey(const Symbol* method);
   llvm::Function* foldFn_ = nullptr;
+  Address stringDest_;                     // assignment target a string builtin may write into directly
   std::set<const Type*> inTypeDefault_;   // a type's own initialiser is being applied
   std::map<const Symbol*, llvm::Function*> functions_;
   std::map<const Symbol*, std::vector<Symbol*>> params_;
