@@ -377,7 +377,13 @@ llvm::Value* CodeGen::stringConversion(const Expr* a, const Type* rt, const Expr
     llvm::Value* t = b_.CreateICmpEQ(b_.CreateCall(runtime("__stc_str_is_true", i32_, {ptrTy_}), {p}), b_.getInt32(1));
     return b_.CreateOr(t, b_.CreateICmpNE(n, b_.getInt64(0)));
   }
-  if (to->isInteger() || to->isBitString() || to->isChar())
+  if (to->isChar()) {
+    // STRING_TO_CHAR: the first character (NUL for an empty string).
+    if (from->kind == TypeKind::WString) p = emitValue(a, nullptr);
+    llvm::Type* ct = from->kind == TypeKind::WString ? i16_ : i8_;
+    return b_.CreateZExtOrTrunc(b_.CreateLoad(ct, p), valueType(rt));
+  }
+  if (to->isInteger() || to->isBitString())
     return b_.CreateTrunc(b_.CreateCall(runtime("__stc_str_to_int", i64_, {ptrTy_}), {p}), valueType(rt));
   error(a->range, "conversion of '" + from->name + "' to '" + to->name + "' is not supported");
   return llvm::UndefValue::get(valueType(rt));
@@ -541,12 +547,7 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
         else if (up == "MUL") acc = fp ? b_.CreateFMul(acc, v) : b_.CreateMul(acc, v);
         else if (up == "SUB") acc = fp ? b_.CreateFSub(acc, v) : b_.CreateSub(acc, v);
         else if (fp) acc = up == "DIV" ? b_.CreateFDiv(acc, v) : b_.CreateFRem(acc, v);
-        else {
-          v = checkedDivisor(v, e);
-          bool sgn = strip(rt)->isSignedInt();
-          if (up == "DIV") acc = sgn ? b_.CreateSDiv(acc, v) : b_.CreateUDiv(acc, v);
-          else acc = sgn ? b_.CreateSRem(acc, v) : b_.CreateURem(acc, v);
-        }
+        else acc = intDivide(acc, v, up == "DIV", strip(rt)->isSignedInt(), e);
       }
       return acc;
     }
@@ -565,15 +566,31 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
       return b_.CreateSelect(big, llvm::ConstantInt::get(v->getType(), 0), r);
     }
     case sema::FSel: {
-      if (isAggregate(rt)) return unsupported();
+      if (isAggregate(rt)) {
+        // Strings, structures, arrays: choose the address.
+        llvm::Value* g = toBool(arg(e, 0, nullptr));
+        llvm::Value* a = emitAddr(argExpr(1)).ptr;
+        llvm::Value* b = emitAddr(argExpr(2)).ptr;
+        return b_.CreateSelect(g, b, a);
+      }
       llvm::Value* g = toBool(arg(e, 0, nullptr));
       llvm::Value* a = arg(e, 1, rt);
       llvm::Value* b = arg(e, 2, rt);
       return b_.CreateSelect(g, b, a);
     }
     case sema::FMaxMin: {
-      if (isAggregate(rt)) return unsupported();
       bool isMax = asciiUpper(name) == "MAX";
+      if (strip(rt)->isString()) {
+        bool wide = strip(rt)->kind == TypeKind::WString;
+        llvm::Value* acc = emitValue(argExpr(0), nullptr);
+        for (size_t i = 1; i < n; ++i) {
+          llvm::Value* v = emitValue(argExpr(i), nullptr);
+          llvm::Value* c = b_.CreateCall(runtime(wide ? "__stc_wstr_cmp" : "__stc_str_cmp", i32_, {ptrTy_, ptrTy_}), {v, acc});
+          acc = b_.CreateSelect(isMax ? b_.CreateICmpSGT(c, b_.getInt32(0)) : b_.CreateICmpSLT(c, b_.getInt32(0)), v, acc);
+        }
+        return acc;
+      }
+      if (isAggregate(rt)) return unsupported();
       llvm::Value* acc = arg(e, 0, rt);
       for (size_t i = 1; i < n; ++i) {
         llvm::Value* v = arg(e, i, rt);
@@ -583,6 +600,17 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
       return acc;
     }
     case sema::FLimit: {
+      if (strip(rt)->isString()) {
+        bool wide = strip(rt)->kind == TypeKind::WString;
+        auto cmp = [&](llvm::Value* x, llvm::Value* y) {
+          return b_.CreateCall(runtime(wide ? "__stc_wstr_cmp" : "__stc_str_cmp", i32_, {ptrTy_, ptrTy_}), {x, y});
+        };
+        llvm::Value* mn = emitValue(argExpr(0), nullptr);
+        llvm::Value* v = emitValue(argExpr(1), nullptr);
+        llvm::Value* mx = emitValue(argExpr(2), nullptr);
+        v = b_.CreateSelect(b_.CreateICmpSLT(cmp(v, mn), b_.getInt32(0)), mn, v);
+        return b_.CreateSelect(b_.CreateICmpSGT(cmp(v, mx), b_.getInt32(0)), mx, v);
+      }
       if (isAggregate(rt)) return unsupported();
       llvm::Value* mn = arg(e, 0, rt);
       llvm::Value* v = arg(e, 1, rt);
@@ -591,7 +619,13 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
       return b_.CreateSelect(emitCompare(BinaryOp::Gt, v, mx, rt), mx, v);
     }
     case sema::FMux: {
-      if (isAggregate(rt)) return unsupported();
+      if (isAggregate(rt)) {
+        llvm::Value* k = b_.CreateSExtOrTrunc(arg(e, 0, nullptr), i64_);
+        llvm::Value* acc = emitAddr(argExpr(n - 1)).ptr;
+        for (size_t i = n - 1; i-- > 1;)
+          acc = b_.CreateSelect(b_.CreateICmpEQ(k, b_.getInt64(i - 1)), emitAddr(argExpr(i)).ptr, acc);
+        return acc;
+      }
       llvm::Value* k = b_.CreateSExtOrTrunc(arg(e, 0, nullptr), i64_);
       // Out of range: the last input (CODESYS); evaluate all inputs (no side effects expected).
       llvm::Value* acc = arg(e, n - 1, rt);
@@ -606,9 +640,19 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
       BinaryOp op = up == "GT" ? BinaryOp::Gt : up == "GE" ? BinaryOp::Ge : up == "EQ" ? BinaryOp::Eq
                     : up == "LE" ? BinaryOp::Le : up == "LT" ? BinaryOp::Lt : BinaryOp::Ne;
       const Type* ot = argExpr(0)->type;
+      bool str = strip(ot)->isString();
+      bool wide = strip(ot)->kind == TypeKind::WString;
       llvm::Value* res = nullptr;
       for (size_t i = 0; i + 1 < n; ++i) {
-        llvm::Value* c = emitCompare(op, arg(e, i, ot), arg(e, i + 1, ot), ot);
+        llvm::Value* c;
+        if (str) {
+          // Strings compare by content (byte or UTF-16 unit order).
+          llvm::Value* r = b_.CreateCall(runtime(wide ? "__stc_wstr_cmp" : "__stc_str_cmp", i32_, {ptrTy_, ptrTy_}),
+                                         {emitValue(argExpr(i), nullptr), emitValue(argExpr(i + 1), nullptr)});
+          c = emitCompare(op, r, b_.getInt32(0), elementary(TypeKind::DInt));
+        } else {
+          c = emitCompare(op, arg(e, i, ot), arg(e, i + 1, ot), ot);
+        }
         res = res ? b_.CreateAnd(res, c) : c;
       }
       return res;

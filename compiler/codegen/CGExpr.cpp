@@ -79,10 +79,18 @@ llvm::Value* CodeGen::convert(llvm::Value* v, const Type* from, const Type* to, 
     r = toBool(v);
   } else if (dt->isFloatingPointTy()) {
     if (v->getType()->isFloatingPointTy()) r = b_.CreateFPCast(v, dt);
+    else if (isTimeKind(f)) {
+      // TIME_TO_REAL counts the type's unit (ms for TIME, s for DATE ...).
+      r = b_.CreateFDiv(b_.CreateSIToFP(v, dt), llvm::ConstantFP::get(dt, static_cast<double>(timeUnitNs(f))));
+    }
     else if (v->getType() == i1_ || !f->isSignedInt()) r = b_.CreateUIToFP(v, dt);
     else r = b_.CreateSIToFP(v, dt);
   } else if (dt->isIntegerTy()) {
-    if (v->getType()->isFloatingPointTy()) {
+    if (v->getType()->isFloatingPointTy() && isTimeKind(t)) {
+      llvm::Type* d = llvm::Type::getDoubleTy(ctx_);
+      llvm::Value* scaled = b_.CreateFMul(b_.CreateFPExt(v, d), llvm::ConstantFP::get(d, static_cast<double>(timeUnitNs(t))));
+      r = b_.CreateIntrinsic(llvm::Intrinsic::fptosi_sat, {dt, d}, {b_.CreateUnaryIntrinsic(llvm::Intrinsic::round, scaled)});
+    } else if (v->getType()->isFloatingPointTy()) {
       // IEC: REAL to integer rounds, halves away from zero; saturating, NaN -> 0.
       llvm::Value* rounded = b_.CreateUnaryIntrinsic(llvm::Intrinsic::round, v);
       auto id = t->isSignedInt() || isTimeKind(t) ? llvm::Intrinsic::fptosi_sat : llvm::Intrinsic::fptoui_sat;
@@ -424,7 +432,8 @@ llvm::Value* CodeGen::emitValue(const Expr* e, const Type* to) {
   }
   llvm::Value* v = emitRaw(e);
   if (!to || !e->type) return v;
-  if (auto* lit = dyn_cast<LiteralExpr>(e); lit && !isAggregate(to) && lit->litKind != LiteralExpr::String && lit->litKind != LiteralExpr::WString) {
+  if (auto* lit = dyn_cast<LiteralExpr>(e);
+      lit && !isAggregate(to) && (lit->litKind == LiteralExpr::Int || lit->litKind == LiteralExpr::Real || lit->litKind == LiteralExpr::Bool)) {
     // Untyped literals take the target type directly (no double rounding).
     if (strip(to)->isReal() || lit->litKind != LiteralExpr::Real) {
       if (to->kind == TypeKind::Subrange) return convert(constantValue(lit, strip(to)), strip(to), to, e);
@@ -653,15 +662,7 @@ llvm::Value* CodeGen::emitBinary(const BinaryExpr* e) {
     case BinaryOp::Div:
     case BinaryOp::Mod: {
       if (fp) return op == BinaryOp::Div ? b_.CreateFDiv(l, r) : b_.CreateFRem(l, r);
-      r = checkedDivisor(r, e);
-      if (sgn) {
-        // MIN / -1 overflows (undefined in LLVM): IEC wraps to MIN; MOD gives 0.
-        llvm::Value* minusOne = b_.CreateICmpEQ(r, llvm::ConstantInt::getSigned(r->getType(), -1));
-        llvm::Value* safeR = b_.CreateSelect(minusOne, llvm::ConstantInt::get(r->getType(), 1), r);
-        if (op == BinaryOp::Div) return b_.CreateSelect(minusOne, b_.CreateNeg(l), b_.CreateSDiv(l, safeR));
-        return b_.CreateSelect(minusOne, llvm::ConstantInt::get(r->getType(), 0), b_.CreateSRem(l, safeR));
-      }
-      return op == BinaryOp::Div ? b_.CreateUDiv(l, r) : b_.CreateURem(l, r);
+      return intDivide(l, r, op == BinaryOp::Div, sgn, e);
     }
     case BinaryOp::And: return b_.CreateAnd(l, r);
     case BinaryOp::Or: return b_.CreateOr(l, r);
@@ -670,6 +671,17 @@ llvm::Value* CodeGen::emitBinary(const BinaryExpr* e) {
   }
   error(e->range, "operator not supported by the code generator yet");
   return llvm::UndefValue::get(l->getType());
+}
+
+// Integer division and MOD with the divisor checked.  MIN / -1 overflows
+// (undefined in LLVM, SIGFPE on x86): IEC wraps to MIN; MOD -1 gives 0.
+llvm::Value* CodeGen::intDivide(llvm::Value* l, llvm::Value* r, bool isDiv, bool isSigned, const Node* at) {
+  r = checkedDivisor(r, at);
+  if (!isSigned) return isDiv ? b_.CreateUDiv(l, r) : b_.CreateURem(l, r);
+  llvm::Value* minusOne = b_.CreateICmpEQ(r, llvm::ConstantInt::getSigned(r->getType(), -1));
+  llvm::Value* safeR = b_.CreateSelect(minusOne, llvm::ConstantInt::get(r->getType(), 1), r);
+  if (isDiv) return b_.CreateSelect(minusOne, b_.CreateNeg(l), b_.CreateSDiv(l, safeR));
+  return b_.CreateSelect(minusOne, llvm::ConstantInt::get(r->getType(), 0), b_.CreateSRem(l, safeR));
 }
 
 // ------------------------------------------------------------------ assignment

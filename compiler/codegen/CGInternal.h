@@ -130,6 +130,7 @@ public:
   llvm::Value* convert(llvm::Value* v, const Type* from, const Type* to, const ast::Expr* at);
   llvm::Value* toBool(llvm::Value* v);
   llvm::Value* emitBinary(const ast::BinaryExpr* e);
+  llvm::Value* intDivide(llvm::Value* l, llvm::Value* r, bool isDiv, bool isSigned, const ast::Node* at);
   llvm::Value* emitCompare(ast::BinaryOp op, llvm::Value* l, llvm::Value* r, const Type* t);
   llvm::Value* emitStringLiteral(const ast::LiteralExpr* lit, const Type* t);
   llvm::Value* constantValue(const ast::LiteralExpr* lit, const Type* t);

@@ -51,7 +51,16 @@ static bool bindArgs(SemaImpl& S, CallExpr* call, const std::vector<std::vector<
       // Extensible functions: IN1, IN2, ... beyond the listed names.
       if (pos == SIZE_MAX && extensible && up.size() > 2 && up.rfind("IN", 0) == 0) {
         int k = std::atoi(up.c_str() + 2);
-        if (k > 0) pos = static_cast<size_t>(k - 1) + (names.size() && names[0][0] == "IN0" ? 1 : 0);
+        if (k >= 0) {
+          // INk sits after the named leading parameters (MUX: K, IN0, IN1, ...).
+          size_t in0 = SIZE_MAX, in1 = SIZE_MAX;
+          for (size_t j = 0; j < names.size(); ++j) {
+            if (names[j][0] == "IN0") in0 = j;
+            if (names[j][0] == "IN1") in1 = j;
+          }
+          if (in0 != SIZE_MAX) pos = in0 + static_cast<size_t>(k);
+          else if (k > 0) pos = (in1 != SIZE_MAX ? in1 : 0) + static_cast<size_t>(k - 1);
+        }
       }
       if (pos == SIZE_MAX) {
         std::vector<std::string> cands;
@@ -270,6 +279,7 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
         const Type* at = S.valueType(S.checkExpr(a[i], ctx));
         if (at->isError()) return T.error();
         if (!t) t = at;
+        else if (t->isString() && at->isString() && t->kind == at->kind) t = t->length >= at->length ? t : at;   // the longer string
         else if (t != at) t = S.commonType(t, at, a[from], a[i], a[i]->range.begin, fn.c_str());
         if (t->isError()) return t;
       }
@@ -277,6 +287,7 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
       if (S.isUntypedLiteral(a[i])) {
         const Type* at = S.valueType(S.checkExpr(a[i], ctx, t ? t : expected));
         if (!t) t = at;
+        else if (t->isString() && at->isString() && t->kind == at->kind) t = t->length >= at->length ? t : at;
         else if (t != at) t = S.commonType(t, at, a[from], a[i], a[i]->range.begin, fn.c_str());
       }
     return t ? t : T.error();

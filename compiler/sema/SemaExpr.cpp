@@ -162,7 +162,7 @@ bool SemaImpl::literalFits(const LiteralExpr* lit, const Type* to) const {
     return v >= to->lo && v <= to->hi;
   }
   const Type* u = to->underlying();
-  if (lit->litKind == LiteralExpr::Real) return u->isReal() && (u->kind == TypeKind::LReal || std::fabs(lit->realValue) <= 3.4028234663852886e38);
+  if (lit->litKind == LiteralExpr::Real) return u->isReal() && (u->kind == TypeKind::LReal || std::isfinite(static_cast<float>(lit->realValue)));   // rounds to a finite REAL
   if (lit->litKind != LiteralExpr::Int) return false;
   uint64_t v = lit->intValue;
   bool neg = lit->negative && v != 0;
