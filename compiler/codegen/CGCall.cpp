@@ -551,6 +551,15 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
       }
       return acc;
     }
+    case sema::FBitwise: {
+      std::string up = asciiUpper(name);
+      llvm::Value* acc = arg(e, 0, rt);
+      for (size_t i = 1; i < n; ++i) {
+        llvm::Value* v = arg(e, i, rt);
+        acc = up == "AND" ? b_.CreateAnd(acc, v) : up == "OR" ? b_.CreateOr(acc, v) : b_.CreateXor(acc, v);
+      }
+      return acc;
+    }
     case sema::FShift: {
       llvm::Value* v = arg(e, 0, rt);
       llvm::Value* k = b_.CreateZExtOrTrunc(arg(e, 1, nullptr), v->getType());

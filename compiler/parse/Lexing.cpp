@@ -446,8 +446,9 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
     }
     out.tokens.push_back(std::move(tok));
   }
-  // MOD(a, b) is also a standard function: where an operand is expected, a
-  // MOD followed by '(' is the function's name, not the operator.
+  // MOD(a, b), AND(a, b, ...), OR(...), XOR(...) are also standard functions:
+  // where an operand is expected, such a keyword followed by '(' is the
+  // function's name, not the operator.
   auto endsOperand = [](size_t ty) {
     return ty == STLexer::IDENTIFIER || ty == STLexer::RPAREN || ty == STLexer::RBRACKET || ty == STLexer::CARET ||
            ty == STLexer::INTEGER_LITERAL || ty == STLexer::REAL_LITERAL || ty == STLexer::BASED_LITERAL || ty == STLexer::STRING_LITERAL ||
@@ -455,7 +456,9 @@ void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOption
            ty == STLexer::DATE_TIME_LITERAL || ty == STLexer::TRUE || ty == STLexer::FALSE || ty == STLexer::DIRECT_ADDRESS;
   };
   for (size_t i = 0; i + 1 < out.tokens.size(); ++i)
-    if (out.tokens[i]->getType() == STLexer::MOD && out.tokens[i + 1]->getType() == STLexer::LPAREN &&
+    if ((out.tokens[i]->getType() == STLexer::MOD || out.tokens[i]->getType() == STLexer::AND || out.tokens[i]->getType() == STLexer::OR ||
+         out.tokens[i]->getType() == STLexer::XOR) &&
+        out.tokens[i + 1]->getType() == STLexer::LPAREN &&
         (i == 0 || !endsOperand(out.tokens[i - 1]->getType())))
       static_cast<antlr4::CommonToken*>(out.tokens[i].get())->setType(STLexer::IDENTIFIER);
 }

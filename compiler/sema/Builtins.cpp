@@ -136,6 +136,7 @@ void SemaImpl::registerBuiltins() {
   add("MOVE", FMove);
   for (const char* f : {"SHL", "SHR", "ROL", "ROR"}) add(f, FShift);
   add("SEL", FSel);
+  for (const char* f : {"AND", "OR", "XOR"}) add(f, FBitwise);   // function forms: AND(a, b, ...)
   add("MAX", FMaxMin);
   add("MIN", FMaxMin);
   add("LIMIT", FLimit);
@@ -381,6 +382,14 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
       const Type* u = t->underlying();
       if (b.arg0 == FMod ? !(u->isInteger() || (S.codesys() && u->isBitString())) : !(u->isNumeric() || u->isDuration() || (S.codesys() && u->isBitString())))
         return bad(a[0], b.arg0 == FMod ? "an integer" : "a number");
+      return t;
+    }
+    case FBitwise: {
+      if (!bindArgs(S, call, {{"IN1"}, {"IN2"}}, 2, true, fn, a)) return T.error();
+      const Type* t = common(0);
+      if (t->isError()) return t;
+      const Type* u = t->underlying();
+      if (!(u->isAnyBit() || (S.codesys() && u->isInteger()))) return bad(a[0], "BOOL or a bit string");
       return t;
     }
     case FMove: {

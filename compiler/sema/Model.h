@@ -17,7 +17,7 @@ namespace stc::sema {
 enum BuiltinFamily {
   FConvert, FToGeneric, FAbs, FRealMath, FAtan2, FExpt, FArith, FMod, FMove, FShift, FSel, FMaxMin, FLimit, FMux,
   FCompare, FLen, FLeftRight, FMid, FConcat, FInsert, FDelete, FReplace, FFind, FFixed, FAdr, FBitAdr, FSizeOf,
-  FIsValid, FIsValidBcd, FEndian, FTrunc, FRound, FBound, FToBcd, FFromBcd,
+  FIsValid, FIsValidBcd, FEndian, FTrunc, FRound, FBound, FToBcd, FFromBcd, FBitwise,
 };
 int builtinFamily(const Symbol* s);       // -1 if not a builtin
 int builtinData(const Symbol* s);         // FConvert: from*100+to (indices of elementaryName)
