@@ -1,6 +1,7 @@
 #include "vm/Controller.h"
 
 #include "stdlib-motion/iec/StdNatives.h"
+#include "stdlib-motion/MotionNatives.h"
 
 #include <csignal>
 #include <cstring>
@@ -34,6 +35,7 @@ Controller::~Controller() = default;
 
 bool Controller::load(std::unique_ptr<codegen::CompiledModule> module, std::string& error) {
   stdlib::registerStandardNatives();
+  motion::registerMotionNatives();
   module_ = std::move(module);
   auto symbols = runtimeSymbols();
   for (const codegen::CompiledModule::Native& n : module_->natives) {
@@ -153,6 +155,22 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
           if (!outputs_.empty()) std::memcpy(outputs_.data(), image_ + im.outputOffset, outputs_.size());
         });
   for (const NativeHook& h : nativeRegistry().cycleHooks()) sched_->addCycleHook(h.name, h.fn);
+  {
+    StartCtx sc{*sched_, image_, [this, &layout](const std::string& path, std::string& typeName) -> void* {
+                  ValueRef ref;
+                  std::string e;
+                  if (!resolvePath(module_->image, layout, path, ref, e) || ref.bit >= 0) return nullptr;
+                  typeName = ref.type->name;
+                  return image_ + ref.offset;
+                }};
+    for (const NativeStartHook& h : nativeRegistry().startHooks()) {
+      std::string e;
+      if (!h.fn(sc, e)) {
+        err << "stc: error: " << e << "\n";
+        return 1;
+      }
+    }
+  }
   if (trace) {
     TraceWriter* tw = trace.get();
     tickFn_ = [this, tw, &traced, &layout](Time now) {

@@ -40,8 +40,25 @@ struct NativeHook {
   std::function<void(const HookCtx&)> fn;
 };
 
+// A start hook of a native library: runs once per run, after the tasks are
+// built and before the first tick (the motion library binds the configured
+// axes to their AXIS_REF globals here).  Returning false stops the run.
+class Scheduler;
+struct StartCtx {
+  Scheduler& scheduler;
+  uint8_t* image;
+  // The address of a variable (`GVL.x`, `Axis1`) and its type name; null if none.
+  std::function<void*(const std::string& path, std::string& typeName)> lookup;
+};
+struct NativeStartHook {
+  std::string name;
+  std::function<bool(const StartCtx&, std::string& error)> fn;
+};
+
 class NativeRegistry {
 public:
+  void addStartHook(NativeStartHook h) { startHooks_.push_back(std::move(h)); }
+  const std::vector<NativeStartHook>& startHooks() const { return startHooks_; }
   void add(NativeEntry e) { entries_.push_back(std::move(e)); }
   void addCycleHook(NativeHook h) { hooks_.push_back(std::move(h)); }
   const std::vector<NativeHook>& cycleHooks() const { return hooks_; }
@@ -53,6 +70,7 @@ private:
   std::vector<NativeEntry> entries_;
   std::vector<NativeLibrary> libraries_;
   std::vector<NativeHook> hooks_;
+  std::vector<NativeStartHook> startHooks_;
 };
 
 NativeRegistry& nativeRegistry();

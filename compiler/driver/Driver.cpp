@@ -21,6 +21,16 @@ namespace stc {
 struct EmbeddedSource { const char* name; const char* text; };
 extern const EmbeddedSource kStdlibSources[];
 extern const size_t kStdlibSourceCount;
+struct EmbeddedLibrarySource { const char* library; const char* name; const char* text; };
+extern const EmbeddedLibrarySource kLibrarySources[];
+extern const size_t kLibrarySourceCount;
+
+std::vector<std::string> availableLibraries() {
+  std::vector<std::string> names;
+  for (size_t i = 0; i < kLibrarySourceCount; ++i)
+    if (names.empty() || names.back() != kLibrarySources[i].library) names.push_back(kLibrarySources[i].library);
+  return names;
+}
 
 Compilation::Compilation() : diags_(sm_), ast_(std::make_unique<ast::ASTContext>()) {}
 Compilation::~Compilation() = default;
@@ -44,6 +54,7 @@ bool Compilation::addPath(const std::string& path) {
     }
     if (pc.dialect) projectDialect_ = pc.dialect;
     projectDefines_.insert(projectDefines_.end(), pc.defines.begin(), pc.defines.end());
+    projectLibraries_.insert(projectLibraries_.end(), pc.libraries.begin(), pc.libraries.end());
     bool ok = true;
     for (const std::string& s : pc.sources) ok = addPath(s) && ok;
     return ok;
@@ -69,6 +80,13 @@ bool Compilation::check(const CompileOptions& opts) {
   if (opts.includeStdlib)
     for (size_t i = 0; i < kStdlibSourceCount; ++i) all.push_back(sm_.addBuffer(kStdlibSources[i].name, kStdlibSources[i].text));
   for (const auto& [name, text] : opts.libraries) all.push_back(sm_.addBuffer(name, text));
+  std::vector<std::string> libs = opts.libraryNames;
+  libs.insert(libs.end(), projectLibraries_.begin(), projectLibraries_.end());
+  std::sort(libs.begin(), libs.end());
+  libs.erase(std::unique(libs.begin(), libs.end()), libs.end());
+  for (const std::string& lib : libs)
+    for (size_t i = 0; i < kLibrarySourceCount; ++i)
+      if (lib == kLibrarySources[i].library) all.push_back(sm_.addBuffer(kLibrarySources[i].name, kLibrarySources[i].text));
   all.insert(all.end(), files_.begin(), files_.end());
 
   auto t0 = clock::now();

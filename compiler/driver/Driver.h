@@ -24,7 +24,11 @@ struct ProjectConfig {
   std::optional<sema::Dialect> dialect;
   std::vector<std::string> defines;
   std::vector<std::string> sources;      // absolute or root-relative paths, sorted
+  std::vector<std::string> libraries;    // [project] libraries: optional libraries of stdlib-motion/ (e.g. codesys_sm3)
 };
+
+// The names of the optional libraries built into the compiler.
+std::vector<std::string> availableLibraries();
 
 // Reads `dir/project.toml` and lists its sources (src/**/*.st, *.exp, *.txt).
 bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error);
@@ -35,6 +39,8 @@ struct CompileOptions {
   bool includeStdlib = true;             // the IEC standard FB declarations
   // Declarations of native libraries (name, ST text) compiled in before the inputs.
   std::vector<std::pair<std::string, std::string>> libraries;
+  // Optional libraries of stdlib-motion/ by name (--lib), besides the project's.
+  std::vector<std::string> libraryNames;
   unsigned parseThreads = 0;             // 0 = one per core
 };
 
@@ -75,6 +81,7 @@ private:
   std::vector<uint32_t> files_;
   std::optional<sema::Dialect> projectDialect_;
   std::vector<std::string> projectDefines_;
+  std::vector<std::string> projectLibraries_;
   sema::Dialect dialect_ = sema::Dialect::IEC;
   CompileStats stats_;
 };

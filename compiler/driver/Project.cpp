@@ -39,6 +39,21 @@ bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error)
   if (auto* defs = tbl["build"]["defines"].as_array())
     for (auto& d : *defs)
       if (auto s = d.value<std::string>()) out.defines.push_back(*s);
+  if (const toml::array* libs = tbl["project"]["libraries"].as_array()) {
+    const std::vector<std::string> known = availableLibraries();
+    for (const toml::node& n : *libs) {
+      auto name = n.value<std::string>();
+      if (!name || std::find(known.begin(), known.end(), *name) == known.end()) {
+        const auto& src = n.source();
+        std::string list;
+        for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+        error = manifest.string() + ":" + std::to_string(src.begin.line) + ":" + std::to_string(src.begin.column) +
+                ": [project] libraries: unknown library" + (name ? " '" + *name + "'" : "") + " (known: " + list + ")";
+        return false;
+      }
+      out.libraries.push_back(*name);
+    }
+  }
   fs::path src = root / "src";
   std::error_code ec;
   if (fs::is_directory(src, ec)) {

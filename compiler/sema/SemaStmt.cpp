@@ -321,6 +321,9 @@ void SemaImpl::checkUnused() {
   for (Symbol* p : pous_) {
     if (!p->pou || p->kind == Symbol::Program) continue;
     PouDecl* d = p->pou->decl;
+    // A native POU's locals are the C++ implementation's state: ST never uses them.
+    if (std::any_of(d->attributes.begin(), d->attributes.end(), [](const Pragma& pr) { return upperCase(pr.name) == "NATIVE"; }))
+      continue;
     for (VarBlock& b : d->varBlocks) {
       if (b.section != VarSection::Var && b.section != VarSection::Temp) continue;
       for (VarDecl* v : b.vars) {

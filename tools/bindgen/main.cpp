@@ -70,6 +70,15 @@ struct Gen {
     }
   }
 
+  // A VAR_IN_OUT field holds an address: typed for a structure (emitted
+  // first, so the implementation can use its members), untyped otherwise.
+  std::string inOutType(const Type* t) {
+    const Type* u = t->underlying();
+    if (u->kind != TypeKind::Struct && u->kind != TypeKind::FunctionBlock) return "void*";
+    std::string suffix;
+    return cType(u, suffix) + "*";
+  }
+
   void emitStruct(const Type* t) {
     if (!emitted.insert(t).second) return;
     const sema::TypeLayout& l = layout.of(t);
@@ -81,7 +90,7 @@ struct Gen {
     for (const sema::FieldLayout& f : l.fields) {
       if (!isUnion && f.offset > pos) body << "  uint8_t _pad" << pad++ << "[" << f.offset - pos << "];\n";
       std::string suffix;
-      std::string ct = !f.type ? "const void*" : f.indirect ? "void*" : cType(f.type, suffix);
+      std::string ct = !f.type ? "const void*" : f.indirect ? inOutType(f.type) : cType(f.type, suffix);
       std::string name = f.type ? f.name : "__vptr";
       body << "  " << ct << " " << name << suffix << ";   // offset " << f.offset << (f.indirect ? ", VAR_IN_OUT (address)" : "") << "\n";
       asserts.push_back("static_assert(offsetof(" + t->name + ", " + name + ") == " + std::to_string(f.offset) + ");");

@@ -1,5 +1,6 @@
 // stc: the command-line entry point.  Subcommands map onto the driver; the
 // command contract is ../shared/DESIGN.md ("The stc command").
+#include <filesystem>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -15,6 +16,7 @@
 #include "vm/Controller.h"
 #include "vm/Time.h"
 #include "vm/testlib/TestLib.h"
+#include "stdlib-motion/MotionNatives.h"
 
 using namespace stc;
 
@@ -24,6 +26,7 @@ struct CheckArgs {
   std::vector<std::string> paths;
   std::string dialect;
   std::vector<std::string> defines;
+  std::vector<std::string> libs;
   std::string format = "text";
   std::string color = "auto";
   bool verify = false;
@@ -41,6 +44,7 @@ CompileOptions compileOptions(const CheckArgs& a) {
   else if (a.dialect == "iec") o.dialect = sema::Dialect::IEC;
   o.parseThreads = a.jobs;
   for (const std::string& d : a.defines) o.defines.insert(asciiLower(d));
+  o.libraryNames = a.libs;
   return o;
 }
 
@@ -251,6 +255,18 @@ int runRun(const BuildArgs& a) {
     std::cerr << "stc: error: --trace needs --trace-out FILE.csv|FILE.vcd\n";
     return 2;
   }
+  // The axes that project directories configure ([[axis]] in project.toml).
+  std::vector<motion::AxisConfig> axes;
+  for (const std::string& p : a.paths) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(p, ec)) continue;
+    std::string err;
+    if (!motion::loadProjectAxes(p, axes, err)) {
+      std::cerr << "stc: error: " << err << "\n";
+      return 1;
+    }
+  }
+  motion::setProjectAxes(std::move(axes));
   vm::Controller ctl(*c.model(), c.diags());
   std::string err;
   size_t before = c.diags().diagnostics().size();
@@ -269,6 +285,7 @@ void addCompileOptions(CLI::App* cmd, BuildArgs& a) {
   cmd->add_option("paths", a.paths, "Files (.st, .exp) or project directories")->required();
   cmd->add_option("--dialect", a.dialect, "Language dialect (default: the project's, else iec)")->check(CLI::IsMember({"iec", "codesys"}));
   cmd->add_option("-D,--define", a.defines, "Define NAME for {IF defined(NAME)} pragmas");
+  cmd->add_option("--lib", a.libs, "Compile in an optional library (e.g. codesys_sm3)")->check(CLI::IsMember(availableLibraries()));
   cmd->add_option("-O", a.opt, "Optimisation level 0-3 (-O0 .. -O3)")->check(CLI::IsMember({"0", "1", "2", "3"}));
   cmd->add_flag("--no-checks", a.noChecks, "Drop the runtime checks (division by zero, bounds, NULL, subranges)");
   cmd->add_flag("-g", a.debug, "Emit debug information");
@@ -292,6 +309,7 @@ int main(int argc, char** argv) {
   check->add_option("paths", ca.paths, "Files (.st, .exp) or project directories")->required();
   check->add_option("--dialect", ca.dialect, "Language dialect (default: the project's, else iec)")->check(CLI::IsMember({"iec", "codesys"}));
   check->add_option("-D,--define", ca.defines, "Define NAME for {IF defined(NAME)} pragmas");
+  check->add_option("--lib", ca.libs, "Compile in an optional library (e.g. codesys_sm3)")->check(CLI::IsMember(availableLibraries()));
   check->add_option("--format", ca.format, "Diagnostic format")->check(CLI::IsMember({"text", "json"}));
   check->add_option("--color", ca.color, "Colour diagnostics")->check(CLI::IsMember({"auto", "always", "never"}));
   check->add_flag("--verify", ca.verify, "Check diagnostics against expected-error/warning/note comments in each file");

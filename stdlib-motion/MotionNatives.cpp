@@ -1,0 +1,219 @@
+#include "stdlib-motion/MotionNatives.h"
+
+#include <algorithm>
+#include <toml++/toml.h>
+
+#include "vm/Native.h"
+#include "vm/Scheduler.h"
+#include "vm/Time.h"
+
+namespace stc::motion {
+
+namespace {
+
+struct Registry {
+  std::vector<AxisConfig> projectAxes;
+  std::vector<std::function<void(Axis&)>> mirrors;
+  std::vector<std::pair<std::string, std::function<void(void*, Axis&)>>> binders;
+  std::vector<std::function<void()>> resets;
+};
+Registry& reg() {
+  static Registry r;
+  return r;
+}
+
+void onStepped(Axis& ax) {
+  for (auto& m : reg().mirrors) m(ax);
+}
+
+// Binds every configured axis to its AXIS_REF variable and task.
+bool start(const vm::StartCtx& sc, std::string& error) {
+  Kernel& k = kernel();
+  k.reset();
+  k.axisStepped = &onStepped;
+  for (auto& r : reg().resets) r();
+  for (const AxisConfig& cfg : reg().projectAxes) {
+    std::string type;
+    void* ref = sc.lookup(cfg.name, type);
+    if (!ref) {
+      error = "project.toml: axis '" + cfg.name + "' has no variable of that name in the program (declare it, e.g. '" + cfg.name +
+              " : AXIS_REF_SM3;' in a VAR_GLOBAL, or add the library that declares the axis type)";
+      return false;
+    }
+    auto b = std::find_if(reg().binders.begin(), reg().binders.end(), [&](auto& p) { return p.first == type; });
+    if (b == reg().binders.end()) {
+      error = "project.toml: axis '" + cfg.name + "' is a " + type + ", not an axis type of a motion library";
+      return false;
+    }
+    Axis& ax = k.addAxis(cfg);
+    // The owning task: the one named, else the first (highest-priority) task.
+    uint32_t task = UINT32_MAX;
+    for (uint32_t i = 0; i < sc.scheduler.taskCount(); ++i) {
+      const std::string& n = sc.scheduler.task(i).name;
+      bool same = n.size() == cfg.task.size() && std::equal(n.begin(), n.end(), cfg.task.begin(), [](char a, char c) { return std::tolower(a) == std::tolower(c); });
+      if (cfg.task.empty() ? (task == UINT32_MAX || sc.scheduler.task(i).priority < sc.scheduler.task(task).priority) : same) task = i;
+    }
+    if (!cfg.task.empty() && task == UINT32_MAX) {
+      error = "project.toml: axis '" + cfg.name + "': there is no task named '" + cfg.task + "'";
+      return false;
+    }
+    ax.task = task;
+    b->second(ref, ax);
+  }
+  return true;
+}
+
+}  // namespace
+
+void setProjectAxes(std::vector<AxisConfig> axes) { reg().projectAxes = std::move(axes); }
+void addAxisMirror(std::function<void(Axis&)> fn) { reg().mirrors.push_back(std::move(fn)); }
+void addAxisBinder(std::string typeName, std::function<void(void*, Axis&)> fn) { reg().binders.emplace_back(std::move(typeName), std::move(fn)); }
+void addResetHook(std::function<void()> fn) { reg().resets.push_back(std::move(fn)); }
+
+CallCtx callContext() {
+  CallCtx c;
+  if (auto* s = vm::Scheduler::current(); s && s->currentTask() != UINT32_MAX) {
+    c.task = s->currentTask();
+    c.cycle = s->currentCycle();
+    c.nowNs = s->now();
+    const vm::TaskConfig& t = s->task(c.task);
+    c.intervalNs = t.kind == vm::TaskKind::Cyclic ? t.interval : s->baseTick();
+  }
+  return c;
+}
+
+void registerMotionNatives() {
+  static bool done = false;
+  if (done) return;
+  done = true;
+  vm::nativeRegistry().addCycleHook({"motion", [](const vm::HookCtx& c) { kernel().cycle(c.task, c.now, c.interval, c.cycle); }});
+  vm::nativeRegistry().addStartHook({"motion", &start});
+  registerSm3Natives();
+}
+
+// ---------------------------------------------------------------- project.toml
+
+namespace {
+
+std::string where(const std::string& file, const toml::node& n) {
+  const auto& s = n.source();
+  return file + ":" + std::to_string(s.begin.line) + ":" + std::to_string(s.begin.column) + ": ";
+}
+
+}  // namespace
+
+bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error) {
+  const std::string file = dir + "/project.toml";
+  toml::table tbl;
+  try {
+    tbl = toml::parse_file(file);
+  } catch (const toml::parse_error&) {
+    return true;   // reported by the compiler's project loader
+  }
+  const toml::array* axes = tbl["axis"].as_array();
+  if (!axes) return true;
+  for (const toml::node& node : *axes) {
+    const toml::table* t = node.as_table();
+    if (!t) {
+      error = where(file, node) + "[[axis]] must be a table";
+      return false;
+    }
+    AxisConfig c;
+    auto num = [&](const char* key, double& v) -> bool {
+      const toml::node* n = t->get(key);
+      if (!n) return true;
+      if (auto d = n->value<double>()) {
+        v = *d;
+        return true;
+      }
+      error = where(file, *n) + "axis key '" + key + "' must be a number";
+      return false;
+    };
+    auto str = [&](const char* key, std::string& v) -> bool {
+      const toml::node* n = t->get(key);
+      if (!n) return true;
+      if (auto s = n->value<std::string>()) {
+        v = *s;
+        return true;
+      }
+      error = where(file, *n) + "axis key '" + key + "' must be a string";
+      return false;
+    };
+    std::string kind = "virtual", drive = "ideal", ramp = "trapez";
+    double swPos = NAN, swNeg = NAN, limPos = NAN, limNeg = NAN;
+    if (!str("name", c.name) || !str("task", c.task) || !str("type", kind) || !str("drive", drive) || !str("ramp", ramp) ||
+        !num("period", c.period) || !num("increments_per_unit", c.drive.incrementsPerUnit) || !num("max_velocity", c.maxVelocity) ||
+        !num("max_acceleration", c.maxAcceleration) || !num("max_deceleration", c.maxDeceleration) || !num("max_jerk", c.maxJerk) ||
+        !num("error_deceleration", c.errorDeceleration) || !num("sw_limit_positive", swPos) || !num("sw_limit_negative", swNeg) ||
+        !num("lag_time", c.drive.lagTime) || !num("kv", c.drive.kv) || !num("following_error_limit", c.drive.followingErrorLimit) ||
+        !num("inertia", c.drive.inertia) || !num("encoder_velocity", c.drive.encoderVelocity) ||
+        !num("limit_switch_positive", limPos) || !num("limit_switch_negative", limNeg) || !num("index_period", c.drive.indexPeriod) ||
+        !num("index_offset", c.drive.indexOffset))
+      return false;
+    if (c.name.empty()) {
+      error = where(file, node) + "[[axis]] needs a name (the AXIS_REF variable it drives)";
+      return false;
+    }
+    static const std::pair<const char*, AxisKind> kinds[] = {
+        {"servo", AxisKind::Servo}, {"virtual", AxisKind::Virtual}, {"encoder", AxisKind::Encoder}, {"pulse", AxisKind::Pulse}};
+    auto k = std::find_if(std::begin(kinds), std::end(kinds), [&](auto& p) { return kind == p.first; });
+    if (k == std::end(kinds)) {
+      error = where(file, node) + "axis '" + c.name + "': type must be servo, virtual, encoder or pulse, not '" + kind + "'";
+      return false;
+    }
+    c.drive.kind = k->second;
+    if (drive == "ideal") c.drive.model = DriveModel::Ideal;
+    else if (drive == "lag") c.drive.model = DriveModel::Lag;
+    else {
+      error = where(file, node) + "axis '" + c.name + "': drive must be ideal or lag, not '" + drive + "'";
+      return false;
+    }
+    if (ramp == "trapez") c.ramp = RampType::Trapez;
+    else if (ramp == "quadratic" || ramp == "quadratic_ramp") c.ramp = RampType::Quadratic;
+    else {
+      error = where(file, node) + "axis '" + c.name + "': ramp must be trapez or quadratic, not '" + ramp + "'";
+      return false;
+    }
+    if (!std::isnan(swPos) || !std::isnan(swNeg)) {
+      c.swLimitEnable = true;
+      c.swLimitPositive = std::isnan(swPos) ? 1e300 : swPos;
+      c.swLimitNegative = std::isnan(swNeg) ? -1e300 : swNeg;
+    }
+    if (!std::isnan(limPos)) c.drive.hasLimitPositive = true, c.drive.limitPositive = limPos;
+    if (!std::isnan(limNeg)) c.drive.hasLimitNegative = true, c.drive.limitNegative = limNeg;
+    if (const toml::array* hs = t->get_as<toml::array>("home_switch")) {
+      if (hs->size() != 2 || !hs->get(0)->value<double>() || !hs->get(1)->value<double>()) {
+        error = where(file, *hs) + "axis '" + c.name + "': home_switch must be [low, high]";
+        return false;
+      }
+      c.drive.hasHomeSwitch = true;
+      c.drive.homeSwitchLow = *hs->get(0)->value<double>();
+      c.drive.homeSwitchHigh = *hs->get(1)->value<double>();
+    }
+    if (const toml::array* faults = t->get_as<toml::array>("fault")) {
+      for (const toml::node& fn : *faults) {
+        const toml::table* f = fn.as_table();
+        std::string at = f ? f->get("at") ? f->get("at")->value_or(std::string()) : std::string() : std::string();
+        std::string fk = f ? f->get("kind") ? f->get("kind")->value_or(std::string()) : std::string() : std::string();
+        FaultEvent ev;
+        static const std::pair<const char*, FaultKind> fkinds[] = {
+            {"drive_error", FaultKind::DriveError}, {"communication_lost", FaultKind::CommunicationLost},
+            {"communication_restored", FaultKind::CommunicationRestored}, {"limit_positive", FaultKind::LimitPositive},
+            {"limit_negative", FaultKind::LimitNegative}, {"limits_released", FaultKind::LimitsReleased}};
+        auto fkind = std::find_if(std::begin(fkinds), std::end(fkinds), [&](auto& p) { return fk == p.first; });
+        if (!f || !vm::parseIecDuration(at, ev.atNs) || fkind == std::end(fkinds)) {
+          error = where(file, fn) + "axis '" + c.name +
+                  "': a fault needs at = \"<duration>\" and kind = drive_error, communication_lost, communication_restored, "
+                  "limit_positive, limit_negative or limits_released";
+          return false;
+        }
+        ev.kind = fkind->second;
+        c.drive.faults.push_back(ev);
+      }
+    }
+    out.push_back(std::move(c));
+  }
+  return true;
+}
+
+}  // namespace stc::motion

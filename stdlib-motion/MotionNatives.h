@@ -1,0 +1,34 @@
+// The controller side of the motion library: registers the kernel's cycle
+// hook and start hook and the vendor faces' natives; holds the axes that
+// project.toml configures.  See docs/motion.md.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "stdlib-motion/core/Kernel.h"
+
+namespace stc::motion {
+
+// Registers everything (idempotent).  Called by the controller at load.
+void registerMotionNatives();
+
+// The axes of the project being run ([[axis]] tables of project.toml).
+void setProjectAxes(std::vector<AxisConfig> axes);
+// Reads the [[axis]] tables of `dir`/project.toml.  False with `error`
+// (file:line:col: message) on a bad table; no file or no table is fine.
+bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error);
+
+// The task, cycle and time of the FB call in progress.
+CallCtx callContext();
+
+// For the faces: mirror an axis into its ST variable after each step; bind a
+// configured axis to the ST variable of the given type; forget bindings at a new run.
+void addAxisMirror(std::function<void(Axis&)> fn);
+void addAxisBinder(std::string typeName, std::function<void(void* ref, Axis& ax)> fn);
+void addResetHook(std::function<void()> fn);
+
+void registerSm3Natives();
+
+}  // namespace stc::motion

@@ -1,0 +1,248 @@
+#include "stdlib-motion/core/Axis.h"
+
+#include <cmath>
+
+namespace stc::motion {
+
+Axis::Axis(AxisConfig cfg, uint32_t index) : cfg_(std::move(cfg)), index_(index), drive_(cfg_.drive) {}
+
+double Axis::reportPosition(double unwrapped) const {
+  if (cfg_.period <= 0) return unwrapped;
+  double r = std::fmod(unwrapped, cfg_.period);
+  if (r < 0) r += cfg_.period;
+  if (r >= cfg_.period) r = 0;   // fmod rounding at -0 / period
+  return r;
+}
+
+// The controlword the controller sends: the CiA402 enable handshake one
+// step per cycle (the drive answers in the next), quick stop while
+// bDriveStart is FALSE, shutdown when the regulator is switched off.
+void Axis::requestPower(bool regulatorOn, bool driveStart, int64_t nowNs) {
+  wantPower_ = regulatorOn;
+  driveStart_ = driveStart;
+  updateControlword();
+  // Devices without a bus answer within the call (MC_Power.Status in c0).
+  if (cfg_.drive.kind != AxisKind::Servo) drive_.settle();
+  (void)nowNs;
+}
+
+void Axis::updateControlword() {
+  uint16_t cw = 0x06;                         // shutdown: power stage off
+  if (wantPower_) {
+    if (!driveStart_) cw = 0x02;              // quick stop
+    else if (cfg_.drive.kind != AxisKind::Servo) cw = 0x0F;
+    else switch (drive_.cia402()) {
+      case Cia402::SwitchOnDisabled: cw = 0x06; break;
+      case Cia402::ReadyToSwitchOn: cw = 0x07; break;
+      default: cw = 0x0F; break;
+    }
+  }
+  if (resetPulse_) cw |= 0x80;
+  drive_.setControlword(cw);
+}
+
+void Axis::clearError() {
+  error_ = Error::None;
+  resetPulse_ = true;       // fault reset (controlword bit 7) to the drive
+  updateControlword();
+}
+
+Limits Axis::limitsFor(double vel, double acc, double dec, double jerk) const {
+  Limits l;
+  l.vel = vel;
+  l.acc = acc;
+  l.dec = dec;
+  l.jerk = cfg_.ramp == RampType::Trapez ? 0.0 : jerk;
+  return l;
+}
+
+bool Axis::absoluteTarget(double position, Direction dir, double& target) const {
+  const int d = static_cast<int>(dir);
+  if (d < -1 || d > 3) return false;
+  if (cfg_.period <= 0) {
+    target = position;
+    return true;
+  }
+  const double P = cfg_.period;
+  const double cur = set_.p;
+  const double base = std::floor(cur / P) * P;
+  double cand = base + reportPosition(position);
+  const double up = cand < cur ? cand + P : cand;      // reached moving in +
+  const double down = cand > cur ? cand - P : cand;    // reached moving in -
+  switch (dir) {
+    case Direction::Positive: target = up; break;
+    case Direction::Negative: target = down; break;
+    case Direction::Shortest: target = (up - cur) <= (cur - down) ? up : down; break;
+    case Direction::Current: target = set_.v < 0 ? down : up; break;
+    case Direction::Fastest: {
+      // The direction whose plan takes less time from the current state.
+      Limits l = lastLimits_;
+      if (!(l.vel > 0 && l.acc > 0 && l.dec > 0)) l = Limits{1, 1, 1, 0};
+      Profile a, b;
+      planPosition(set_, up, 0, l, a);
+      planPosition(set_, down, 0, l, b);
+      target = a.duration() <= b.duration() ? up : down;
+      break;
+    }
+  }
+  return true;
+}
+
+// The state a new base movement starts from: the set state without the
+// contribution of a superimposed move in progress.
+Kinematic Axis::baseState() const {
+  return Kinematic{set_.p - supState_.p, set_.v - supState_.v, set_.a - supState_.a};
+}
+
+// Starts a base movement of `kind` whose profile the caller plans from the
+// returned state.  A blended hand-over (frac != 0) starts from the
+// predecessor's exact end state at the instant it was reached.
+Kinematic Axis::beginBase(Movement::Kind kind, int64_t nowNs, double frac) {
+  Kinematic s = baseState();
+  if (frac != 0 && mv_.kind != Movement::Kind::None) {
+    s = mv_.profile.end();
+    s.p += offset_;
+  }
+  offset_ = 0;
+  mv_.kind = kind;
+  mv_.originNs = nowNs;
+  mv_.originFrac = frac;
+  mv_.reached = false;
+  return s;
+}
+
+void Axis::startPosition(double target, double vEnd, const Limits& lim, int64_t nowNs, double frac) {
+  Kinematic s = beginBase(Movement::Kind::Position, nowNs, frac);
+  lastLimits_ = lim;
+  planPosition(s, target, vEnd, lim, mv_.profile);
+}
+
+void Axis::startVelocity(double v, const Limits& lim, int64_t nowNs, double frac) {
+  Kinematic s = beginBase(Movement::Kind::Velocity, nowNs, frac);
+  lastLimits_ = lim;
+  planVelocity(s, v, lim, mv_.profile);
+}
+
+void Axis::startStop(const Limits& lim, int64_t nowNs) {
+  Kinematic s = beginBase(Movement::Kind::Stop, nowNs, 0);
+  Limits l = lim;
+  // A stop never speeds up: its velocity bound is the current speed.
+  l.vel = std::max(std::fabs(s.v), 1e-9);
+  planVelocity(s, 0, l, mv_.profile);
+}
+
+void Axis::startSuperimposed(double distance, const Limits& lim, int64_t nowNs) {
+  // A new superimposed move takes over from the one in progress: what that
+  // one has moved so far stays, its remaining distance is dropped.
+  Kinematic rel{0, supState_.v, supState_.a};
+  offset_ += supState_.p;
+  planPosition(rel, distance, 0, lim, sup_.profile);
+  sup_.kind = Movement::Kind::Position;
+  sup_.originNs = nowNs;
+  sup_.originFrac = 0;
+  sup_.reached = false;
+  supState_ = rel;
+}
+
+void Axis::shiftPosition(double delta) {
+  offset_ += delta;
+  set_.p += delta;
+  drive_.shift(delta);
+  lastCommandedTarget += delta;
+}
+
+void Axis::holdAt(double pos) {
+  set_ = heldBase_ = Kinematic{pos, 0, 0};
+  offset_ = 0;
+  mv_.kind = sup_.kind = Movement::Kind::None;
+  supState_ = Kinematic{};
+}
+
+void Axis::sample(int64_t nowNs) {
+  Kinematic base = heldBase_;
+  base.v = base.a = 0;
+  if (mv_.kind != Movement::Kind::None) {
+    const double t = mv_.t(nowNs);
+    const double T = mv_.profile.duration();
+    if (t >= T - kEndTolerance) {
+      base = mv_.profile.end();
+      base.p += base.v * (t - T);
+    } else {
+      base = mv_.profile.at(t);
+    }
+  }
+  if (sup_.kind != Movement::Kind::None) {
+    const double t = sup_.t(nowNs);
+    supState_ = t >= sup_.profile.duration() - kEndTolerance ? sup_.profile.end() : sup_.profile.at(t);
+  }
+  baseNow_ = base;
+  set_.p = base.p + offset_ + supState_.p;
+  set_.v = base.v + supState_.v;
+  set_.a = base.a + supState_.a;
+}
+
+StepResult Axis::step(int64_t nowNs, double dt) {
+  StepResult r;
+  // ---- set point = base movement + offset + superimposed part
+  sample(nowNs);
+  if (mv_.kind != Movement::Kind::None) {
+    const double over = mv_.t(nowNs) - mv_.profile.duration();
+    if (!mv_.reached && over >= -kEndTolerance) {
+      mv_.reached = true;
+      r.reached = true;
+      r.overshoot = std::max(over, 0.0);
+    }
+    if (mv_.reached && baseNow_.v == 0) mv_.kind = Movement::Kind::None;   // at rest: nothing left to generate
+  }
+  heldBase_ = baseNow_;
+  if (sup_.kind != Movement::Kind::None && sup_.t(nowNs) >= sup_.profile.duration() - kEndTolerance) {
+    offset_ += supState_.p;       // the finished superimposed distance becomes part of the offset
+    supState_ = Kinematic{};
+    sup_.kind = Movement::Kind::None;
+    r.superimposedReached = true;
+  }
+
+  // ---- drive
+  if (cfg_.drive.kind != AxisKind::Servo) updateControlword();
+  drive_.cycle(set_.p, set_.v, set_.a, dt, nowNs);
+  if (cfg_.drive.kind == AxisKind::Servo) updateControlword();   // answered in the next cycle
+  resetPulse_ = false;
+
+  // ---- supervision (the first error wins; ErrorStop reports no further ones)
+  if (state_ == AxisState::ErrorStop) return r;
+  if (!drive_.communication()) r.error = Error::Communication;
+  else if (drive_.faulted()) r.error = Error::DriveError;
+  else if (state_ != AxisState::PowerOff && state_ != AxisState::Homing &&
+           ((drive_.limitPositiveActive() && set_.v > 0) || (drive_.limitNegativeActive() && set_.v < 0)))
+    r.error = Error::HwLimitsExceeded;
+  else if (cfg_.swLimitEnable && state_ != AxisState::Homing && (set_.p > cfg_.swLimitPositive || set_.p < cfg_.swLimitNegative))
+    r.error = Error::SwLimitsExceeded;
+  else if (cfg_.drive.followingErrorLimit > 0 && std::fabs(set_.p - drive_.actPosition()) > cfg_.drive.followingErrorLimit)
+    r.error = Error::FollowingError;
+  else if (cfg_.maxVelocity > 0 && std::fabs(set_.v) > cfg_.maxVelocity * (1 + 1e-9))
+    r.error = Error::VdMaxVelocityExceeded;
+  else if (cfg_.maxAcceleration > 0 && set_.a * set_.v > 0 && std::fabs(set_.a) > cfg_.maxAcceleration * (1 + 1e-9))
+    r.error = Error::VdMaxAccelerationExceeded;
+  else if (cfg_.maxDeceleration > 0 && set_.a * set_.v < 0 && std::fabs(set_.a) > cfg_.maxDeceleration * (1 + 1e-9))
+    r.error = Error::VdMaxDecelerationExceeded;
+  return r;
+}
+
+void Axis::enterErrorStop(Error e, int64_t nowNs) {
+  state_ = AxisState::ErrorStop;
+  error_ = e;
+  sup_.kind = Movement::Kind::None;
+  if (!drive_.operationEnabled()) {
+    // The power stage is off (drive fault, lost enable): the motor stands where it is.
+    holdAt(drive_.actPosition());
+    return;
+  }
+  double dec = cfg_.errorDeceleration > 0 ? cfg_.errorDeceleration : cfg_.maxDeceleration > 0 ? cfg_.maxDeceleration : 1000.0;
+  if (set_.v != 0 || set_.a != 0) {
+    startStop(Limits{std::fabs(set_.v), dec, dec, 0}, nowNs);
+  } else {
+    holdAt(set_.p);
+  }
+}
+
+}  // namespace stc::motion

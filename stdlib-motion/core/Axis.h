@@ -1,0 +1,163 @@
+// A simulated axis: PLCopen state machine, set-point generation from the
+// active movement, the drive (ideal, velocity-loop lag, stepper, encoder
+// only) with a CiA402 state machine and object dictionary, limit switches,
+// home switch, index pulse and injected faults.  See docs/motion.md.
+//
+// Positions inside the core are unwrapped; a modulo axis reports them in
+// [0, period).  All times are simulated: nanoseconds of the controller clock.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stdlib-motion/core/Drive.h"
+#include "stdlib-motion/core/Errors.h"
+#include "stdlib-motion/core/Trajectory.h"
+
+namespace stc::motion {
+
+// SMC_AXIS_STATE values.
+enum class AxisState : uint8_t {
+  PowerOff = 0, ErrorStop = 1, Stopping = 2, Standstill = 3,
+  DiscreteMotion = 4, ContinuousMotion = 5, SynchronizedMotion = 6, Homing = 7,
+};
+
+// MC_DIRECTION values.
+enum class Direction : int8_t { Negative = -1, Shortest = 0, Positive = 1, Current = 2, Fastest = 3 };
+
+// MC_BUFFER_MODE values.
+enum class BufferMode : uint8_t { Aborting = 0, Buffered = 1, BlendingLow = 2, BlendingPrevious = 3, BlendingNext = 4, BlendingHigh = 5 };
+
+// SMC_RAMPTYPE values: trapez ignores Jerk; the quadratic ramps use it.
+enum class RampType : uint8_t { Trapez = 0, SinSquare = 1, Quadratic = 2, QuadraticSmooth = 3 };
+
+struct AxisConfig {
+  std::string name;              // the AXIS_REF global it is bound to ("" = bound from ST)
+  std::string task;              // owning task; "" = the task of the first FB call on it
+  DriveConfig drive;             // kind, model, scaling, switches, faults
+  double period = 0;             // modulo period [u]; 0 = linear axis
+  // Dynamic limits (fMaxVelocity ...): set values beyond them are errors 40-42.  0 = not checked.
+  double maxVelocity = 0, maxAcceleration = 0, maxDeceleration = 0, maxJerk = 0;
+  // Software limits (errors 10).
+  bool swLimitEnable = false;
+  double swLimitPositive = 0, swLimitNegative = 0;
+  double errorDeceleration = 0;  // stop ramp in ErrorStop; 0 = maxDeceleration, else 1e3 u/s^2 if that is 0 too
+  RampType ramp = RampType::Trapez;
+};
+
+class FbSlot;
+
+// What one step of an axis found.
+struct StepResult {
+  bool reached = false;              // the base movement reached the end of its profile
+  double overshoot = 0;              // seconds between that end and this cycle's time
+  bool superimposedReached = false;  // the superimposed move finished
+  Error error = Error::None;         // a supervision error (limits, drive, communication)
+};
+
+// The movement that currently generates the set point.
+struct Movement {
+  enum class Kind : uint8_t { None, Position, Velocity, Stop };
+  Kind kind = Kind::None;
+  Profile profile;
+  int64_t originNs = 0;          // the profile's t = 0 ...
+  double originFrac = 0;         // ... plus this many seconds (blended hand-overs start between cycles)
+  bool reached = false;          // the end of the profile has been reached
+  double t(int64_t nowNs) const { return static_cast<double>(nowNs - originNs) * 1e-9 + originFrac; }
+};
+
+class Axis {
+public:
+  explicit Axis(AxisConfig cfg, uint32_t index);
+
+  const AxisConfig& config() const { return cfg_; }
+  uint32_t index() const { return index_; }
+  AxisState state() const { return state_; }
+  Error error() const { return error_; }
+  bool isModulo() const { return cfg_.period > 0; }
+
+  // Owning task (UINT32_MAX = not yet owned).
+  uint32_t task = UINT32_MAX;
+
+  // ---- set point and feedback (unwrapped, technical units)
+  const Kinematic& set() const { return set_; }
+  double actPosition() const { return drive_.actPosition(); }
+  double actVelocity() const { return drive_.actVelocity(); }
+  double actTorque() const { return drive_.actTorque(); }
+  // Reported values: modulo axes in [0, period).
+  double reportPosition(double unwrapped) const;
+  Drive& drive() { return drive_; }
+  const Drive& drive() const { return drive_; }
+
+  // ---- power (MC_Power): the controlword follows the request (CiA402 handshake)
+  bool powerRequested() const { return wantPower_; }
+  bool driveStart() const { return driveStart_; }
+  bool operational() const { return drive_.operationEnabled(); }
+  bool ready() const { return operational() && driveStart_ && state_ != AxisState::ErrorStop; }
+  void requestPower(bool regulatorOn, bool driveStart, int64_t nowNs);
+
+  // ---- errors
+  // ErrorStop: the set point ramps down with the error deceleration (or
+  // stands still when the power stage is off).
+  void enterErrorStop(Error e, int64_t nowNs);
+  // MC_Reset: clears the error and pulses the drive's fault reset.
+  void clearError();
+  void setState(AxisState s) { state_ = s; }
+  bool atRest() const { return set_.v == 0 && set_.a == 0 && mv_.kind == Movement::Kind::None; }
+
+  // ---- movements (positions unwrapped), started at nowNs (+frac seconds)
+  void startPosition(double target, double vEnd, const Limits& lim, int64_t nowNs, double frac = 0);
+  void startVelocity(double v, const Limits& lim, int64_t nowNs, double frac = 0);
+  void startStop(const Limits& lim, int64_t nowNs);
+  void startSuperimposed(double distance, const Limits& lim, int64_t nowNs);
+  void holdAt(double pos);                       // ends every movement, set point at rest at pos
+  const Movement& movement() const { return mv_; }
+  bool superimposedActive() const { return sup_.kind != Movement::Kind::None; }
+  // MC_SetPosition: shifts set and actual position by `delta` (no motion).
+  void shiftPosition(double delta);
+
+  // Limits of a command: jerk only with the quadratic ramp types.
+  Limits limitsFor(double vel, double acc, double dec, double jerk) const;
+  // The unwrapped target of an absolute move (modulo direction rules).  False: invalid direction.
+  bool absoluteTarget(double position, Direction dir, double& target) const;
+
+  // ---- FBs in control
+  FbSlot* controller = nullptr;          // the FB whose command generates the set point
+  std::vector<FbSlot*> queue;            // buffered commands, oldest first
+  FbSlot* superimposer = nullptr;        // MC_MoveSuperImposed in progress
+  FbSlot* blockingStop = nullptr;        // MC_Stop holding the axis in Stopping
+  FbSlot* resetter = nullptr;            // MC_Reset waiting for the drive / standstill
+  FbSlot* power = nullptr;               // the MC_Power instance that last operated the axis
+  std::vector<FbSlot*> pendingClear;     // terminal outputs to clear after one cycle
+  double lastCommandedTarget = 0;        // for MC_MoveAdditive (unwrapped)
+
+  // ---- the cycle: advances the set point to nowNs, runs the drive, supervises.
+  StepResult step(int64_t nowNs, double dt);
+  // Evaluates the movements at nowNs into set() without side effects on the
+  // drive (a command accepted in a call starts from the state at its cycle's time).
+  void sample(int64_t nowNs);
+
+  // Profile ends within this many seconds of a cycle's time count as reached
+  // in that cycle (cycle times are whole nanoseconds).
+  static constexpr double kEndTolerance = 1e-10;
+
+private:
+  Kinematic baseState() const;
+  Kinematic beginBase(Movement::Kind kind, int64_t nowNs, double frac);
+  void updateControlword();
+  AxisConfig cfg_;
+  uint32_t index_;
+  AxisState state_ = AxisState::PowerOff;
+  Error error_ = Error::None;
+  bool wantPower_ = false, driveStart_ = false, resetPulse_ = false;
+  Kinematic set_;                        // total set state
+  Kinematic heldBase_, baseNow_;                   // base movement state (without offset and superimposed part)
+  Movement mv_, sup_;
+  double offset_ = 0;                    // MC_SetPosition shifts and finished superimposed moves
+  Kinematic supState_;                   // contribution of the superimposed move in progress
+  Limits lastLimits_{1, 1, 1, 0};
+  Drive drive_;
+};
+
+}  // namespace stc::motion

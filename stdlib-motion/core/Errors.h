@@ -1,0 +1,63 @@
+// Error identifiers of the motion core.  The numbers are CODESYS SoftMotion's
+// SMC_ERROR values (spec/amc1600c.md, appendix 3); every vendor face maps
+// them to its own ErrorID type (the SM3 faces use SMC_ERROR directly).
+#pragma once
+
+#include <cstdint>
+
+namespace stc::motion {
+
+enum class Error : uint16_t {
+  None = 0,
+  Communication = 1,                 // SMC_DI_GENERAL_COMMUNICATION_ERROR
+  DriveError = 2,                    // SMC_DI_AXIS_ERROR
+  SwLimitsExceeded = 10,             // SMC_DI_SWLIMITS_EXCEEDED
+  HwLimitsExceeded = 11,             // SMC_DI_HWLIMITS_EXCEEDED
+  VoltageDisabled = 14,              // SMC_DI_VOLTAGE_DISABLED
+  FollowingError = 16,               // SMC_DI_POSITIONLAGERROR
+  RegulatorOrStartNotSet = 20,       // SMC_REGULATOR_OR_START_NOT_SET
+  WrongControllerMode = 21,          // SMC_WRONG_CONTROLLER_MODE
+  FbWasntCalledDuringMotion = 30,    // SMC_FB_WASNT_CALLED_DURING_MOTION
+  AxisRefChanged = 32,               // SMC_AXIS_REF_CHANGED_DURING_OPERATION
+  FbActiveAxisDisabled = 33,         // SMC_FB_ACTIVE_AXIS_DISABLED
+  NotReadyForMotion = 34,            // SMC_AXIS_NOT_READY_FOR_MOTION
+  VdMaxVelocityExceeded = 40,        // SMC_VD_MAX_VELOCITY_EXCEEDED
+  VdMaxAccelerationExceeded = 41,    // SMC_VD_MAX_ACCELERATION_EXCEEDED
+  VdMaxDecelerationExceeded = 42,    // SMC_VD_MAX_DECELERATION_EXCEEDED
+  HomingInvalidVelAcc = 50,          // SMC_3SH_INVALID_VELACC_VALUES
+  HomingModeNeedsHwLimit = 51,       // SMC_3SH_MODE_NEEDS_HWLIMIT
+  PowerTaskCycleEmpty = 110,         // SMC_P_FTASKCYCLE_EMPTY
+  ResetNoErrorToReset = 120,         // SMC_R_NO_ERROR_TO_RESET
+  ResetDriveDoesntAnswer = 121,      // SMC_R_DRIVE_DOESNT_ANSWER
+  ResetNotResettable = 122,          // SMC_R_ERROR_NOT_RESETTABLE
+  ReadParamUnknown = 130,            // SMC_RP_PARAM_UNKNOWN
+  WriteParamInvalid = 140,           // SMC_WP_PARAM_INVALID
+  HomeAxisWasntStandstill = 170,     // SMC_H_AXIS_WASNT_STANDSTILL
+  HomeAxisDidntStartHoming = 171,    // SMC_H_AXIS_DIDNT_START_HOMING
+  StopInvalidAccDec = 181,           // SMC_MS_INVALID_ACCDEC_VALUES
+  StopDirectionNotApplicable = 182,  // SMC_MS_DIRECTION_NOT_APPLICABLE
+  StopAxisInErrorStop = 183,         // SMC_MS_AXIS_IN_ERRORSTOP
+  BlockingStopWasntCalled = 184,     // SMC_BLOCKING_MC_STOP_WASNT_CALLED
+  MaInvalidVelAcc = 201,             // SMC_MA_INVALID_VELACC_VALUES
+  MaInvalidDirection = 202,          // SMC_MA_INVALID_DIRECTION
+  MrInvalidVelAcc = 226,             // SMC_MR_INVALID_VELACC_VALUES
+  MrInvalidDirection = 227,          // SMC_MR_INVALID_DIRECTION
+  MadInvalidVelAcc = 251,            // SMC_MAD_INVALID_VELACC_VALUES
+  MadInvalidDirection = 252,         // SMC_MAD_INVALID_DIRECTION
+  MsiInvalidVelAcc = 276,            // SMC_MSI_INVALID_VELACC_VALUES
+  MsiInvalidDirection = 277,         // SMC_MSI_INVALID_DIRECTION
+  MvInvalidAccDec = 301,             // SMC_MV_INVALID_ACCDEC_VALUES
+  MvDirectionNotApplicable = 302,    // SMC_MV_DIRECTION_NOT_APPLICABLE
+  McrInvalidVelAcc = 426,            // SMC_MCR_INVALID_VELACC_VALUES
+  McrInvalidDirection = 427,         // SMC_MCR_INVALID_DIRECTION
+  McaInvalidVelAcc = 451,            // SMC_MCA_INVALID_VELACC_VALUES
+  McaInvalidDirection = 452,         // SMC_MCA_INVALID_DIRECTION
+  McaDirectionNotApplicable = 453,   // SMC_MCA_DIRECTION_NOT_APPLICABLE
+  // Not in the SMC_ERROR table: a buffer mode the running command cannot hand over with.
+  BlendingNotSupportedByPrevious = 0x7001,  // see docs/motion.md ("Buffer modes")
+  BufferFull = 0x7002,                      // more buffered commands than the queue holds
+};
+
+inline uint16_t code(Error e) { return static_cast<uint16_t>(e); }
+
+}  // namespace stc::motion

@@ -1,0 +1,89 @@
+// The motion kernel: every simulated axis, every motion FB slot, the
+// instruction semantics (what a call of each FB does) and the per-cycle step
+// that runs after the programs of the task owning the axes.
+//
+// One kernel per controller (`kernel()`), reset at each load.  The vendor
+// faces (stdlib-motion/<set>/) are thin: they copy the ST inputs into the
+// calls below and the FbOutputs back into the ST instance.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "stdlib-motion/core/Axis.h"
+#include "stdlib-motion/core/Fb.h"
+
+namespace stc::motion {
+
+// Vendor differences are data.
+struct VendorProfile {
+  // MC_Jog: Busy falls with the jog input (manual) rather than when the axis stops (CODESYS).
+  bool jogBusyEndsAtRelease = true;
+  // Motion commands accepted while the axis is synchronized (aborting the coupling).
+  bool movesAbortSynchronized = true;
+};
+
+// Where and when an FB is being called.
+struct CallCtx {
+  uint32_t task = 0;
+  uint64_t cycle = 0;          // the task's cycle number (1-based)
+  int64_t nowNs = 0;           // simulated time of the cycle
+  int64_t intervalNs = 1000000;
+};
+
+class Kernel {
+public:
+  void reset();
+
+  // ---- axes
+  Axis& addAxis(const AxisConfig& cfg);
+  Axis* axis(uint32_t index) { return index < axes_.size() ? axes_[index].get() : nullptr; }
+  size_t axisCount() const { return axes_.size(); }
+  // Binds `axis` to the calling task if it has no owner yet; false if another task owns it.
+  bool claim(Axis& axis, const CallCtx& c);
+
+  // ---- FB slots: `handle` lives in the ST instance (0 = none yet).
+  FbSlot& slot(uint64_t& handle, void* instance, FbKind kind, PublishFn publish);
+
+  // ---- instruction semantics (called from the FB bodies)
+  void callPower(FbSlot& fb, Axis& ax, bool enable, bool regulatorOn, bool driveStart, const CallCtx& c);
+  void callReset(FbSlot& fb, Axis& ax, bool execute, const CallCtx& c);
+  void callMove(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, const CallCtx& c);
+  void callHalt(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, const CallCtx& c);
+  void callStop(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, const CallCtx& c);
+  void callJog(FbSlot& fb, Axis& ax, bool forward, bool backward, const MoveInputs& in, const CallCtx& c);
+  void callInch(FbSlot& fb, Axis& ax, bool forward, bool backward, const MoveInputs& in, const CallCtx& c);
+  void callSetPosition(FbSlot& fb, Axis& ax, bool execute, double position, bool relative, const CallCtx& c);
+
+  // ---- the cycle: steps every axis owned by `task`.
+  void cycle(uint32_t task, int64_t nowNs, int64_t intervalNs, uint64_t cycle);
+  // Called after an axis has been stepped (the face mirrors it into AXIS_REF).
+  void (*axisStepped)(Axis& ax) = nullptr;
+
+  VendorProfile profile;
+  uint64_t callCounter = 0;
+
+private:
+  // Output-rule helpers.
+  bool beginExecute(FbSlot& fb, bool execute, const CallCtx& c);   // true on a rising edge
+  void finish(FbSlot& fb, const CallCtx* c, uint64_t cycle, bool done, bool aborted, Error e);
+  void fail(FbSlot& fb, Error e, const CallCtx& c);
+  void abortController(Axis& ax, uint64_t cycle, Error e = Error::None);
+  void accept(FbSlot& fb, Axis& ax, const CallCtx& c);
+  void startCommand(FbSlot& fb, Axis& ax, int64_t nowNs, double frac);
+  void stepAxis(Axis& ax, int64_t nowNs, double dt, uint64_t cycle);
+  void onReached(Axis& ax, int64_t nowNs, uint64_t cycle, double overshoot);
+  void errorStop(Axis& ax, Error e, int64_t nowNs, uint64_t cycle);
+  void updatePower(Axis& ax, int64_t nowNs, uint64_t cycle);
+  void completeReset(Axis& ax, uint64_t cycle);
+  // MC_Power reports an error when the drive is not enabled this long after the request.
+  static constexpr int64_t kPowerTimeoutNs = 1'000'000'000;
+
+  std::vector<std::unique_ptr<Axis>> axes_;
+  std::vector<std::unique_ptr<FbSlot>> slots_;
+};
+
+Kernel& kernel();
+
+}  // namespace stc::motion

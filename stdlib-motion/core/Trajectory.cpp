@@ -1,0 +1,396 @@
+// One-axis trajectory planner (see Trajectory.h and docs/motion.md, "Trajectories").
+//
+// Model (what "time-optimal" means here)
+// --------------------------------------
+// A velocity plan is one *velocity transition* from (v0, a0) to (vTarget, a = 0).
+// A position plan is  [transition (v0, a0) -> (vp, 0)] + [cruise at vp for tc >= 0]
+// + [transition (vp, 0) -> (vEnd, 0)]  with a peak velocity |vp| <= vel, and is the
+// fastest plan of that shape (the peak velocity vp and the cruise time are chosen
+// optimally; overshoot-and-return is the case where vp has the opposite sign of the
+// remaining distance's "natural" direction).  Each transition is the time-optimal
+// change of velocity under the bounds below.
+//
+// Acceleration bounds and the crossing of v = 0:
+//  - Trapezoidal (jerk == 0 or +inf): a transition is a constant acceleration ramp.
+//    If it keeps the sign of v it uses acc when |v| grows and dec when |v| falls.
+//    If it crosses v = 0 it is split at v = 0: first dec down to v = 0, then acc up
+//    to the new velocity (this is exact in the model, no conservatism).  The start
+//    acceleration is ignored: the profile's start() keeps the given state (with its
+//    a), segment 0 starts with whatever acceleration the first ramp needs.
+//  - Jerk-limited: a transition is the time-optimal acceleration trapezoid or
+//    triangle (|j| = jerk on the ramps) at a plateau bound A:
+//       A = acc            if v >= 0 throughout the transition (in the direction of
+//                          the velocity change: |v| grows while a has that sign),
+//       A = dec            if the transition ends at v = 0 or beyond on the side
+//                          it started from (v <= 0 throughout, mirrored: |v| falls),
+//       A = min(acc, dec)  if the velocity crosses 0 during the transition.
+//    (Formally, mirrored so that the transition increases v: A = acc when
+//    min(v0, vNat) >= 0, A = dec when the target velocity <= 0, min(acc,dec)
+//    otherwise; vNat = v0 + a0|a0|/(2 jerk) is the velocity reached by ramping
+//    the start acceleration to 0 at full jerk.)
+//  - Start acceleration (jerk-limited): it is changed at full jerk from the first
+//    instant.  If it exceeds the plateau bound A in the direction of the transition it
+//    is first ramped down to A at full jerk.  While the start acceleration is ramped
+//    towards 0, |a| never exceeds |a0|; an unavoidable excursion caused by the start
+//    state (e.g. |a0| > acc when v crosses 0 during that ramp, or |v| growing past vel
+//    because a0 pushes outwards: at most up to |vNat|) is not corrected further.
+//  - A start with |v| > vel: the first transition goes to |vp| <= vel with the
+//    falling-speed bound; it never speeds up beyond vel.
+#include "stdlib-motion/core/Trajectory.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace stc::motion {
+
+namespace {
+
+inline Kinematic integrate(const Kinematic& s, double j, double dt) {
+  return {s.p + dt * (s.v + dt * (s.a * 0.5 + dt * j * (1.0 / 6.0))), s.v + dt * (s.a + dt * j * 0.5),
+          s.a + dt * j};
+}
+
+struct Ctx {
+  double J;       // jerk (jerk mode only)
+  double acc, dec, vel;
+  bool jerkMode;
+  // reciprocals (jerk mode): 1/J and 1/acc, 1/dec, 1/min(acc, dec)
+  double iJ, iAcc, iDec, amin, iAmin;
+};
+
+// A velocity transition: up to 3 phases (jerk mode: constant jerk; trapezoidal
+// mode: constant acceleration), total time T and displacement D.
+struct Trans {
+  int n = 0;
+  double dur[3];
+  double val[3];
+  double T = 0, D = 0;
+};
+
+// uz, wz: which side of 0 a zero start / end velocity stands for (-1: 0-, +1: 0+,
+// 0: exactly 0); they only matter when u or w is 0 (the bound A changes there).
+inline void transJerk(double u, double a0, double w, const Ctx& c, Trans& r, int uz = 0, int wz = 0) {
+  const double J = c.J, iJ = c.iJ;
+  const double unat = u + a0 * std::fabs(a0) * (0.5 * iJ);
+  const double s = (w >= unat) ? 1.0 : -1.0;
+  const double up = s * u, a = s * a0, wp = s * w, unp = s * unat;
+  const double umin = std::min(up, unp);
+  // all v >= 0 (mirrored): acc; ends at v <= 0: dec; crosses 0: min(acc, dec)
+  const bool startsNonNeg = umin > 0 || (umin == 0 && (unp > 0 || s * uz >= 0));
+  const bool endsNonPos = wp < 0 || (wp == 0 && s * wz <= 0);
+  const double A = startsNonNeg ? c.acc : (endsNonPos ? c.dec : c.amin);
+  const double iA = startsNonNeg ? c.iAcc : (endsNonPos ? c.iDec : c.iAmin);
+  double t1, j1, t2, t3, ap;
+  if (a > A) {
+    t1 = (a - A) * iJ;
+    j1 = -J;
+    ap = A;
+    t2 = std::max(0.0, (wp - unp) * iA);
+    t3 = A * iJ;
+  } else {
+    j1 = J;
+    const double ap2 = J * (wp - up) + 0.5 * a * a;
+    if (ap2 <= A * A) {
+      ap = std::sqrt(std::max(ap2, 0.0));
+      t1 = std::max(0.0, (ap - a) * iJ);
+      t2 = 0;
+      t3 = ap * iJ;
+    } else {
+      ap = A;
+      t1 = (A - a) * iJ;
+      t2 = std::max(0.0, (wp - up) * iA - (2 * A * A - a * a) * (0.5 * iJ * iA));
+      t3 = A * iJ;
+    }
+  }
+  // displacement in the mirrored frame
+  const double x1 = t1 * (up + t1 * (a * 0.5 + t1 * j1 * (1.0 / 6.0)));
+  const double v1 = up + t1 * (a + t1 * j1 * 0.5);
+  const double v2 = wp - ap * t3 * 0.5;   // velocity where the final ramp starts
+  const double x2 = 0.5 * (v1 + v2) * t2;
+  const double x3 = t3 * (wp - J * t3 * t3 * (1.0 / 6.0));
+  r.n = 3;
+  r.dur[0] = t1; r.val[0] = s * j1;
+  r.dur[1] = t2; r.val[1] = 0;
+  r.dur[2] = t3; r.val[2] = -s * J;
+  r.T = t1 + t2 + t3;
+  r.D = s * (x1 + x2 + x3);
+}
+
+inline void transTrap(double u, double w, const Ctx& c, Trans& r) {
+  if (u == w) {
+    r.n = 0; r.T = 0; r.D = 0;
+  } else if (u * w >= 0) {
+    const double A = std::fabs(w) > std::fabs(u) ? c.acc : c.dec;
+    const double t = std::fabs(w - u) / A;
+    r.n = 1;
+    r.dur[0] = t; r.val[0] = w > u ? A : -A;
+    r.T = t;
+    r.D = 0.5 * (u + w) * t;
+  } else {
+    const double t1 = std::fabs(u) / c.dec, t2 = std::fabs(w) / c.acc;
+    r.n = 2;
+    r.dur[0] = t1; r.val[0] = u > 0 ? -c.dec : c.dec;
+    r.dur[1] = t2; r.val[1] = w > 0 ? c.acc : -c.acc;
+    r.T = t1 + t2;
+    r.D = 0.5 * (u * t1 + w * t2);
+  }
+}
+
+inline void trans(double u, double a0, double w, const Ctx& c, Trans& r, int uz = 0, int wz = 0) {
+  if (c.jerkMode) transJerk(u, a0, w, c, r, uz, wz);
+  else transTrap(u, w, c, r);
+}
+
+void pushTrans(Profile& out, const Trans& r, bool jerkMode) {
+  for (int i = 0; i < r.n; ++i) {
+    if (!(r.dur[i] > 0)) continue;
+    if (jerkMode) out.push(r.dur[i], r.val[i]);
+    else out.pushAcc(r.dur[i], r.val[i]);
+  }
+}
+
+inline bool finite(double x) { return std::isfinite(x); }
+
+PlanStatus checkLimits(const Limits& lim) {
+  auto pos = [](double x) { return finite(x) && x > 0; };
+  if (!pos(lim.vel) || !pos(lim.acc) || !pos(lim.dec)) return PlanStatus::InvalidLimits;
+  if (std::isnan(lim.jerk) || lim.jerk < 0) return PlanStatus::InvalidLimits;
+  return PlanStatus::Ok;
+}
+
+bool validState(const Kinematic& s) { return finite(s.p) && finite(s.v) && finite(s.a); }
+
+Ctx makeCtx(const Limits& lim) {
+  Ctx c;
+  c.acc = lim.acc; c.dec = lim.dec; c.vel = lim.vel;
+  c.jerkMode = lim.jerk > 0 && finite(lim.jerk);
+  c.J = c.jerkMode ? lim.jerk : 0;
+  c.iJ = c.jerkMode ? 1 / c.J : 0;
+  c.iAcc = 1 / c.acc;
+  c.iDec = 1 / c.dec;
+  c.amin = std::min(c.acc, c.dec);
+  c.iAmin = 1 / c.amin;
+  return c;
+}
+
+void hold(const Kinematic& start, Profile& out) {
+  out.clear(start);
+  out.finish(start);
+}
+
+// The position problem: displacement as a function of the peak velocity.
+struct PosProblem {
+  Ctx c;
+  double v0, a0, vEnd, delta;
+  // D(vp) - delta, and the total transition time
+  // (mag: the size of the terms, i.e. the scale of the rounding error of f)
+  // (zs: the side of 0 that vp == 0 stands for, see transJerk)
+  inline double f(double vp, double* T = nullptr, double* mag = nullptr, int zs = 0) const {
+#ifdef STC_COUNT_CALLS
+    STC_COUNT_CALLS;
+#endif
+    Trans r1, r2;
+    trans(v0, a0, vp, c, r1, 0, zs);
+    trans(vp, 0, vEnd, c, r2, zs, 0);
+    if (T) *T = r1.T + r2.T;
+    if (mag) *mag = std::fabs(r1.D) + std::fabs(r2.D) + std::fabs(delta);
+    return (r1.D + r2.D) - delta;
+  }
+};
+
+// Root of p.f on the piece [lo, hi] with f(lo) * f(hi) < 0.  The search runs on
+// u in [0, 1] with vp = lo + (hi - lo) * s(u), s the smoothstep 3u^2 - 2u^3: the
+// transition times behave like sqrt(|vp - end|) next to a breakpoint (a vanishing
+// triangle), s removes that singularity at both ends, so the iteration converges
+// fast and the root is resolved far below the spacing of doubles near lo or hi.
+// Illinois variant of regula falsi.
+inline double mapPiece(double lo, double hi, double u) {
+  if (u <= 0.5) return lo + (hi - lo) * (u * u * (3 - 2 * u));
+  const double w = 1 - u;
+  return hi - (hi - lo) * (w * w * (3 - 2 * w));
+}
+
+double solveRoot(const PosProblem& p, double lo, double flo, double hi, double fhi) {
+  const int zs = lo == 0 ? 1 : hi == 0 ? -1 : 0;   // a piece next to 0 is on one side of it
+  double u0 = 0, f0 = flo, u1 = 1, f1 = fhi;
+  for (int it = 0; it < 100; ++it) {
+    double u = u1 - f1 * (u1 - u0) / (f1 - f0);
+    const double a = std::min(u0, u1), b = std::max(u0, u1);
+    if (!(u > a && u < b)) {
+      u = 0.5 * (u0 + u1);
+      if (!(u > a && u < b)) break;
+    }
+    double mag;
+    const double fu = p.f(mapPiece(lo, hi, u), nullptr, &mag, zs);
+    if (std::fabs(fu) <= 4e-16 * mag) return mapPiece(lo, hi, u);
+    if ((fu < 0) != (f1 < 0)) {
+      u0 = u1; f0 = f1;
+    } else {
+      f0 *= 0.5;
+    }
+    u1 = u; f1 = fu;
+  }
+  return mapPiece(lo, hi, std::fabs(f0) < std::fabs(f1) ? u0 : u1);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- Profile
+
+void Profile::clear(const Kinematic& start) {
+  count_ = 0;
+  duration_ = 0;
+  start_ = end_ = cur_ = start;
+}
+
+void Profile::push(double duration, double jerk) {
+  if (count_ >= kMaxSegments) return;
+  segs_[count_++] = {duration_, cur_.p, cur_.v, cur_.a, jerk, duration};
+  cur_ = integrate(cur_, jerk, duration);
+  duration_ += duration;
+}
+
+void Profile::pushAcc(double duration, double acc) {
+  if (count_ >= kMaxSegments) return;
+  cur_.a = acc;
+  segs_[count_++] = {duration_, cur_.p, cur_.v, acc, 0.0, duration};
+  cur_ = integrate(cur_, 0.0, duration);
+  duration_ += duration;
+}
+
+void Profile::finish(const Kinematic& exactEnd) {
+  end_ = exactEnd;
+  cur_ = exactEnd;
+}
+
+Kinematic Profile::at(double t) const {
+  if (!(t > 0)) return start_;
+  if (t >= duration_) return {end_.p + end_.v * (t - duration_), end_.v, end_.a};
+  int i = count_ - 1;
+  while (i > 0 && t < segs_[i].t0) --i;
+  const Segment& s = segs_[i];
+  // (t - t0 may exceed the exact duration by the rounding of the stored times)
+  const double dt = std::min(t - s.t0, s.dur);
+  return integrate({s.p, s.v, s.a}, s.j, dt);
+}
+
+// ---------------------------------------------------------------- planners
+
+PlanStatus planVelocity(const Kinematic& start, double vTarget, const Limits& lim, Profile& out) {
+  PlanStatus st = checkLimits(lim);
+  if (st == PlanStatus::Ok && (!finite(vTarget) || std::fabs(vTarget) > lim.vel)) st = PlanStatus::InvalidTarget;
+  if (st == PlanStatus::Ok && !validState(start)) st = PlanStatus::InvalidState;
+  if (st != PlanStatus::Ok) {
+    hold(start, out);
+    return st;
+  }
+  const Ctx c = makeCtx(lim);
+  Trans r;
+  trans(start.v, c.jerkMode ? start.a : 0.0, vTarget, c, r);
+  out.clear(start);
+  pushTrans(out, r, c.jerkMode);
+  // integrated end position (position is free)
+  double pEnd = start.p;
+  if (out.segmentCount() > 0) {
+    const auto& s = out.segment(out.segmentCount() - 1);
+    pEnd = integrate({s.p, s.v, s.a}, s.j, out.duration() - s.t0).p;
+  }
+  out.finish({pEnd, vTarget, 0.0});
+  return PlanStatus::Ok;
+}
+
+PlanStatus planPosition(const Kinematic& start, double target, double vEnd, const Limits& lim, Profile& out) {
+  PlanStatus st = checkLimits(lim);
+  if (st == PlanStatus::Ok && (!finite(target) || !finite(vEnd) || std::fabs(vEnd) > lim.vel))
+    st = PlanStatus::InvalidTarget;
+  if (st == PlanStatus::Ok && !validState(start)) st = PlanStatus::InvalidState;
+  if (st != PlanStatus::Ok) {
+    hold(start, out);
+    return st;
+  }
+  PosProblem P;
+  P.c = makeCtx(lim);
+  const Ctx& c = P.c;
+  P.v0 = start.v;
+  P.a0 = c.jerkMode ? start.a : 0.0;
+  P.vEnd = vEnd;
+  P.delta = target - start.p;
+  const double vel = c.vel;
+  const double vnat = c.jerkMode ? P.v0 + P.a0 * std::fabs(P.a0) / (2 * c.J) : P.v0;
+
+  // Breakpoints of the peak velocity: the pieces between them are searched for
+  // roots of D(vp) = delta (plans without cruise).  v = 0 is a breakpoint with two
+  // sides: the bound of a jerk-limited transition that crosses 0 differs from that
+  // of one that ends or starts at 0, so D jumps there and no root is searched across.
+  double bp[8];
+  int zs[8];   // side of 0 used to evaluate a breakpoint at 0
+  int nb = 0;
+  auto addBp = [&](double x, int side) {   // insertion into the sorted list
+    if (!(x > -vel && x < vel) || (x == 0 && side == 0)) return;
+    int k = nb++;
+    while (k > 0 && bp[k - 1] > x) { bp[k] = bp[k - 1]; zs[k] = zs[k - 1]; --k; }
+    bp[k] = x;
+    zs[k] = side;
+  };
+  bp[nb] = -vel; zs[nb++] = 0;
+  addBp(0.0, -1);
+  addBp(0.0, 1);   // (inserted after 0-, the sort is stable)
+  addBp(vnat, 0);
+  addBp(vEnd, 0);
+  bp[nb] = vel; zs[nb++] = 0;
+
+  double bestT = std::numeric_limits<double>::infinity();
+  double bestVp = 0, bestTc = 0;
+  int bestZs = 0;
+
+  double fv[8], Tv[8];
+  for (int i = 0; i < nb; ++i) fv[i] = P.f(bp[i], &Tv[i], nullptr, zs[i]);
+  // cruise at +-vel
+  if (fv[nb - 1] <= 0) {
+    const double tc = -fv[nb - 1] / vel;
+    const double T = Tv[nb - 1] + tc;
+    if (T < bestT) { bestT = T; bestVp = vel; bestTc = tc; }
+  }
+  if (fv[0] >= 0) {
+    const double tc = fv[0] / vel;
+    const double T = Tv[0] + tc;
+    if (T < bestT) { bestT = T; bestVp = -vel; bestTc = tc; }
+  }
+  if (c.jerkMode) {
+    // vp = 0 exactly (stop, then restart; D(0) may differ from both one-sided
+    // limits): a root only if it is exact, possible only next to a sign change at 0
+    int i0 = 0;
+    while (i0 < nb && !(bp[i0] == 0)) ++i0;
+    if (i0 + 1 < nb && bp[i0 + 1] == 0 && !((fv[i0] < 0 && fv[i0 + 1] < 0) || (fv[i0] > 0 && fv[i0 + 1] > 0))) {
+      double T0;
+      if (P.f(0.0, &T0) == 0 && T0 < bestT) { bestT = T0; bestVp = 0; bestTc = 0; }
+    }
+  }
+  for (int i = 0; i < nb; ++i) {
+    if (fv[i] == 0 && Tv[i] < bestT) { bestT = Tv[i]; bestVp = bp[i]; bestTc = 0; bestZs = zs[i]; }
+    if (i + 1 < nb && !(bp[i] == 0 && bp[i + 1] == 0) &&
+        ((fv[i] < 0 && fv[i + 1] > 0) || (fv[i] > 0 && fv[i + 1] < 0))) {
+      const double x = solveRoot(P, bp[i], fv[i], bp[i + 1], fv[i + 1]);
+      const int side = x != 0 ? 0 : bp[i] == 0 ? 1 : -1;
+      double T;
+      P.f(x, &T, nullptr, side);
+      if (T < bestT) { bestT = T; bestVp = x; bestTc = 0; bestZs = side; }
+    }
+  }
+
+  Trans r1, r2;
+  trans(P.v0, P.a0, bestVp, c, r1, 0, bestZs);
+  trans(bestVp, 0, vEnd, c, r2, bestZs, 0);
+  out.clear(start);
+  pushTrans(out, r1, c.jerkMode);
+  if (bestTc > 0) {
+    if (c.jerkMode) out.push(bestTc, 0.0);
+    else out.pushAcc(bestTc, 0.0);
+  }
+  pushTrans(out, r2, c.jerkMode);
+  out.finish({target, vEnd, 0.0});
+  return PlanStatus::Ok;
+}
+
+}  // namespace stc::motion
