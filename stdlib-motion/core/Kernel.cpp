@@ -454,9 +454,9 @@ void Kernel::callHalt(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, 
 }
 
 void Kernel::callStop(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, const CallCtx& c) {
-  const bool wasExecute = fb.execute;
+  const bool wasExecute = fb.execute, wasDone = fb.out.done;
   const bool rising = beginExecute(fb, execute, c);
-  if (!execute && wasExecute && ax.blockingStop == &fb && fb.out.done && ax.state() == AxisState::Stopping) {
+  if (!execute && wasExecute && ax.blockingStop == &fb && wasDone && ax.state() == AxisState::Stopping) {
     // Stopping -> Standstill: Done and Execute FALSE (state diagram *6).
     ax.blockingStop = nullptr;
     ax.setState(AxisState::Standstill);

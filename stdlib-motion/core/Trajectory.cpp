@@ -3,39 +3,50 @@
 // Model (what "time-optimal" means here)
 // --------------------------------------
 // A velocity plan is one *velocity transition* from (v0, a0) to (vTarget, a = 0).
-// A position plan is  [transition (v0, a0) -> (vp, 0)] + [cruise at vp for tc >= 0]
-// + [transition (vp, 0) -> (vEnd, 0)]  with a peak velocity |vp| <= vel, and is the
-// fastest plan of that shape (the peak velocity vp and the cruise time are chosen
-// optimally; overshoot-and-return is the case where vp has the opposite sign of the
-// remaining distance's "natural" direction).  Each transition is the time-optimal
-// change of velocity under the bounds below.
+// A position plan is
+//     [transition (v0, a0) -> (vp, 0)] + [cruise at vp for tc >= 0] + [transition (vp, 0) -> (vEnd, 0)]
+// with a peak velocity |vp| <= vel; it is the fastest plan of that shape (vp and tc
+// chosen optimally).  Overshoot-and-return is the case where vp points away from
+// the target.  Each transition is the time-optimal change of velocity under the
+// bounds below.  The optimum is a plan with |vp| = vel and a cruise, or a root of
+// D(vp) = target - p0 (D: displacement of the two transitions, no cruise): both
+// are enumerated over the pieces of vp between the breakpoints -vel, 0-, 0+,
+// vNat, vEnd, vel and the fastest is taken.
 //
 // Acceleration bounds and the crossing of v = 0:
-//  - Trapezoidal (jerk == 0 or +inf): a transition is a constant acceleration ramp.
+//  - Trapezoidal (jerk == 0 or +inf): a transition is a constant-acceleration ramp.
 //    If it keeps the sign of v it uses acc when |v| grows and dec when |v| falls.
-//    If it crosses v = 0 it is split at v = 0: first dec down to v = 0, then acc up
-//    to the new velocity (this is exact in the model, no conservatism).  The start
-//    acceleration is ignored: the profile's start() keeps the given state (with its
-//    a), segment 0 starts with whatever acceleration the first ramp needs.
+//    If it crosses v = 0 it is split at v = 0: dec down to v = 0, then acc up to the
+//    new velocity (exact in the model, no conservatism).  The start acceleration is
+//    ignored: the profile's start() keeps the given state (with its a), segment 0
+//    starts with the acceleration the first ramp needs (a jumps at t = 0+).
 //  - Jerk-limited: a transition is the time-optimal acceleration trapezoid or
-//    triangle (|j| = jerk on the ramps) at a plateau bound A:
-//       A = acc            if v >= 0 throughout the transition (in the direction of
-//                          the velocity change: |v| grows while a has that sign),
-//       A = dec            if the transition ends at v = 0 or beyond on the side
-//                          it started from (v <= 0 throughout, mirrored: |v| falls),
-//       A = min(acc, dec)  if the velocity crosses 0 during the transition.
-//    (Formally, mirrored so that the transition increases v: A = acc when
-//    min(v0, vNat) >= 0, A = dec when the target velocity <= 0, min(acc,dec)
-//    otherwise; vNat = v0 + a0|a0|/(2 jerk) is the velocity reached by ramping
-//    the start acceleration to 0 at full jerk.)
+//    triangle (|j| = jerk on the ramps) with plateau bound A, chosen per transition:
+//       A = acc            if v >= 0 throughout (mirrored so that the transition
+//                          raises v: |v| only grows while a > 0),
+//       A = dec            if it ends at v <= 0 (|v| only falls while a > 0),
+//       A = min(acc, dec)  if v crosses 0 during the transition (the whole
+//                          transition, not only the part after the crossing).
+//    Formally, mirrored so that the transition raises v: A = acc when
+//    min(v0, vNat) >= 0, else dec when the target velocity <= 0, else min(acc, dec);
+//    vNat = v0 + a0|a0|/(2 jerk) is the velocity reached by ramping the start
+//    acceleration to 0 at full jerk.  A transition that starts or ends exactly at
+//    v = 0 does not cross it (a plan may stop exactly at v = 0 and restart).
 //  - Start acceleration (jerk-limited): it is changed at full jerk from the first
-//    instant.  If it exceeds the plateau bound A in the direction of the transition it
-//    is first ramped down to A at full jerk.  While the start acceleration is ramped
-//    towards 0, |a| never exceeds |a0|; an unavoidable excursion caused by the start
-//    state (e.g. |a0| > acc when v crosses 0 during that ramp, or |v| growing past vel
-//    because a0 pushes outwards: at most up to |vNat|) is not corrected further.
+//    instant.  If it exceeds the plateau bound A in the direction of the transition
+//    it is first ramped down to A at full jerk.  While the start acceleration is
+//    ramped towards 0, |a| never exceeds |a0|; excursions the start state makes
+//    unavoidable are not corrected further: |a0| above the bound of the side v is on
+//    (e.g. v crosses 0 during that first ramp), and |v| above vel while a0 pushes
+//    outwards (|v| then peaks at |vNat|).
 //  - A start with |v| > vel: the first transition goes to |vp| <= vel with the
-//    falling-speed bound; it never speeds up beyond vel.
+//    falling-speed bound; it never speeds up beyond vel (beyond |vNat| when a0 pushes).
+//
+// The model is not the unconstrained optimum of the jerk-limited problem: between
+// the transitions the acceleration passes through 0 at vp (a "touch" of a = 0),
+// which from a start with nonzero acceleration can be slower than a profile
+// without it (Ruckig-style UDUD profiles), and the min(acc, dec) rule is
+// conservative for crossing transitions.
 #include "stdlib-motion/core/Trajectory.h"
 
 #include <algorithm>
@@ -187,9 +198,6 @@ struct PosProblem {
   // (mag: the size of the terms, i.e. the scale of the rounding error of f)
   // (zs: the side of 0 that vp == 0 stands for, see transJerk)
   inline double f(double vp, double* T = nullptr, double* mag = nullptr, int zs = 0) const {
-#ifdef STC_COUNT_CALLS
-    STC_COUNT_CALLS;
-#endif
     Trans r1, r2;
     trans(v0, a0, vp, c, r1, 0, zs);
     trans(vp, 0, vEnd, c, r2, zs, 0);
@@ -384,6 +392,7 @@ PlanStatus planPosition(const Kinematic& start, double target, double vEnd, cons
   trans(bestVp, 0, vEnd, c, r2, bestZs, 0);
   out.clear(start);
   pushTrans(out, r1, c.jerkMode);
+  out.snap(bestVp, 0.0);
   if (bestTc > 0) {
     if (c.jerkMode) out.push(bestTc, 0.0);
     else out.pushAcc(bestTc, 0.0);

@@ -77,6 +77,9 @@ public:
   // Appends a segment of that duration (> 0) with constant acceleration `acc`
   // and jerk 0; the acceleration may jump at its start (trapezoidal profiles).
   void pushAcc(double duration, double acc);
+  // Replaces the integrated velocity and acceleration at the current end by the
+  // exactly known values (removes rounding drift before a long cruise).
+  void snap(double v, double a) { cur_.v = v; cur_.a = a; }
 
 private:
   Segment segs_[kMaxSegments] = {};
