@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <thread>
 #include <filesystem>
 #include <sstream>
+#include <string_view>
 
 #include "basic/Text.h"
 #include "parse/Parser.h"
@@ -82,6 +84,23 @@ bool Compilation::check(const CompileOptions& opts) {
   for (const auto& [name, text] : opts.libraries) all.push_back(sm_.addBuffer(name, text));
   std::vector<std::string> libs = opts.libraryNames;
   libs.insert(libs.end(), projectLibraries_.begin(), projectLibraries_.end());
+  // A library names the libraries it builds on in a comment line
+  // "stc-requires: NAME ..." (leadshine requires codesys_sm3 for AXIS_REF_SM3).
+  for (size_t k = 0; k < libs.size(); ++k)
+    for (size_t i = 0; i < kLibrarySourceCount; ++i) {
+      if (libs[k] != kLibrarySources[i].library) continue;
+      std::string_view text = kLibrarySources[i].text;
+      size_t at = text.find("stc-requires:");
+      if (at == std::string_view::npos) continue;
+      std::string_view rest = text.substr(at + 13, text.find('\n', at) - at - 13);
+      for (size_t b = 0; b < rest.size();) {
+        while (b < rest.size() && (rest[b] == ' ' || rest[b] == ',')) ++b;
+        size_t e = b;
+        while (e < rest.size() && (std::isalnum(static_cast<unsigned char>(rest[e])) || rest[e] == '_')) ++e;
+        if (e > b && std::find(libs.begin(), libs.end(), rest.substr(b, e - b)) == libs.end()) libs.emplace_back(rest.substr(b, e - b));
+        b = e == b ? rest.size() : e;
+      }
+    }
   std::sort(libs.begin(), libs.end());
   libs.erase(std::unique(libs.begin(), libs.end()), libs.end());
   for (const std::string& lib : libs)

@@ -100,11 +100,12 @@ Kinematic Axis::baseState() const {
 Kinematic Axis::beginBase(Movement::Kind kind, int64_t nowNs, double frac) {
   Kinematic s = baseState();
   if (frac != 0 && mv_.kind != Movement::Kind::None) {
-    s = mv_.profile.end();
+    s = mv_.end();
     s.p += offset_;
   }
   offset_ = 0;
   mv_.kind = kind;
+  mv_.gen.reset();
   mv_.originNs = nowNs;
   mv_.originFrac = frac;
   mv_.reached = false;
@@ -144,6 +145,22 @@ void Axis::startSuperimposed(double distance, const Limits& lim, int64_t nowNs) 
   supState_ = rel;
 }
 
+void Axis::startExternal(std::shared_ptr<const Generator> gen, int64_t nowNs) {
+  beginBase(Movement::Kind::External, nowNs, 0);
+  mv_.gen = std::move(gen);
+}
+
+Kinematic Movement::at(double t) const {
+  const double T = duration();
+  if (t >= T - Axis::kEndTolerance) {
+    Kinematic e = end();
+    e.p += e.v * (t - T);
+    e.a = 0;
+    return e;
+  }
+  return gen ? gen->at(t) : profile.at(t);
+}
+
 void Axis::shiftPosition(double delta) {
   offset_ += delta;
   set_.p += delta;
@@ -155,22 +172,14 @@ void Axis::holdAt(double pos) {
   set_ = heldBase_ = Kinematic{pos, 0, 0};
   offset_ = 0;
   mv_.kind = sup_.kind = Movement::Kind::None;
+  mv_.gen.reset();
   supState_ = Kinematic{};
 }
 
 void Axis::sample(int64_t nowNs) {
   Kinematic base = heldBase_;
   base.v = base.a = 0;
-  if (mv_.kind != Movement::Kind::None) {
-    const double t = mv_.t(nowNs);
-    const double T = mv_.profile.duration();
-    if (t >= T - kEndTolerance) {
-      base = mv_.profile.end();
-      base.p += base.v * (t - T);
-    } else {
-      base = mv_.profile.at(t);
-    }
-  }
+  if (mv_.kind != Movement::Kind::None) base = mv_.at(mv_.t(nowNs));
   if (sup_.kind != Movement::Kind::None) {
     const double t = sup_.t(nowNs);
     supState_ = t >= sup_.profile.duration() - kEndTolerance ? sup_.profile.end() : sup_.profile.at(t);
@@ -186,13 +195,16 @@ StepResult Axis::step(int64_t nowNs, double dt) {
   // ---- set point = base movement + offset + superimposed part
   sample(nowNs);
   if (mv_.kind != Movement::Kind::None) {
-    const double over = mv_.t(nowNs) - mv_.profile.duration();
+    const double over = mv_.t(nowNs) - mv_.duration();
     if (!mv_.reached && over >= -kEndTolerance) {
       mv_.reached = true;
       r.reached = true;
       r.overshoot = std::max(over, 0.0);
     }
-    if (mv_.reached && baseNow_.v == 0) mv_.kind = Movement::Kind::None;   // at rest: nothing left to generate
+    if (mv_.reached && baseNow_.v == 0) {   // at rest: nothing left to generate
+      mv_.kind = Movement::Kind::None;
+      mv_.gen.reset();
+    }
   }
   heldBase_ = baseNow_;
   if (sup_.kind != Movement::Kind::None && sup_.t(nowNs) >= sup_.profile.duration() - kEndTolerance) {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -56,15 +57,30 @@ struct StepResult {
   Error error = Error::None;         // a supervision error (limits, drive, communication)
 };
 
+// A set-point source other than a planned profile (PVT tables, follow
+// set values, homing phases...): the base state at t seconds after its start.
+// After duration() the axis continues at the end velocity, like a profile.
+class Generator {
+public:
+  virtual ~Generator() = default;
+  virtual Kinematic at(double t) const = 0;
+  virtual double duration() const = 0;   // +infinity: never ends by itself
+};
+
 // The movement that currently generates the set point.
 struct Movement {
-  enum class Kind : uint8_t { None, Position, Velocity, Stop };
+  enum class Kind : uint8_t { None, Position, Velocity, Stop, External };
   Kind kind = Kind::None;
   Profile profile;
+  std::shared_ptr<const Generator> gen;  // Kind::External
   int64_t originNs = 0;          // the profile's t = 0 ...
   double originFrac = 0;         // ... plus this many seconds (blended hand-overs start between cycles)
   bool reached = false;          // the end of the profile has been reached
   double t(int64_t nowNs) const { return static_cast<double>(nowNs - originNs) * 1e-9 + originFrac; }
+  double duration() const { return gen ? gen->duration() : profile.duration(); }
+  // The state at t; past the end, the end state continued at its velocity.
+  Kinematic at(double t) const;
+  Kinematic end() const { return gen ? gen->at(gen->duration()) : profile.end(); }
 };
 
 class Axis {
@@ -72,6 +88,8 @@ public:
   explicit Axis(AxisConfig cfg, uint32_t index);
 
   const AxisConfig& config() const { return cfg_; }
+  // For the configuration FBs (limits, ramp type, gearing ...): changes apply from the next command.
+  AxisConfig& mutableConfig() { return cfg_; }
   uint32_t index() const { return index_; }
   AxisState state() const { return state_; }
   Error error() const { return error_; }
@@ -111,6 +129,8 @@ public:
   void startVelocity(double v, const Limits& lim, int64_t nowNs, double frac = 0);
   void startStop(const Limits& lim, int64_t nowNs);
   void startSuperimposed(double distance, const Limits& lim, int64_t nowNs);
+  // A base movement from a generator whose at(0) continues the current set state.
+  void startExternal(std::shared_ptr<const Generator> gen, int64_t nowNs);
   void holdAt(double pos);                       // ends every movement, set point at rest at pos
   const Movement& movement() const { return mv_; }
   bool superimposedActive() const { return sup_.kind != Movement::Kind::None; }
@@ -130,6 +150,7 @@ public:
   FbSlot* resetter = nullptr;            // MC_Reset waiting for the drive / standstill
   FbSlot* power = nullptr;               // the MC_Power instance that last operated the axis
   std::vector<FbSlot*> pendingClear;     // terminal outputs to clear after one cycle
+  std::vector<FbSlot*> observers;        // FBs with a behaviour that watch every step (probes, cam switches ...)
   double lastCommandedTarget = 0;        // for MC_MoveAdditive (unwrapped)
 
   // ---- the cycle: advances the set point to nowNs, runs the drive, supervises.

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
 #include "stdlib-motion/core/Axis.h"
 #include "stdlib-motion/core/Errors.h"
@@ -46,6 +47,26 @@ struct MoveInputs {
 
 using PublishFn = void (*)(void* instance, const FbOutputs& out);
 
+class Kernel;
+class FbSlot;
+
+// What an FB does beyond the built-in commands (homing, profile tables,
+// follow set values, probes, cam switches ...).  Modules outside Kernel.cpp
+// attach one to their slot; the kernel calls it at fixed points of the cycle.
+class FbBehaviour {
+public:
+  virtual ~FbBehaviour() = default;
+  // The command becomes the one in control (directly or from the buffer):
+  // start the axis movement (Axis::startPosition/Velocity/External ...) and set the axis state.
+  virtual void start(Kernel& k, FbSlot& fb, Axis& ax, int64_t nowNs) = 0;
+  // Before the axis step, while the FB is in control of the axis.
+  virtual void beforeStep(Kernel&, FbSlot&, Axis&, int64_t /*nowNs*/, uint64_t /*cycle*/) {}
+  // The axis movement reached its end in this cycle (instead of the built-in Done).
+  virtual void reached(Kernel& k, FbSlot& fb, Axis& ax, int64_t nowNs, uint64_t cycle, double overshoot);
+  // After the axis step, for FBs registered in Axis::observers.
+  virtual void afterStep(Kernel&, FbSlot&, Axis&, int64_t /*nowNs*/, uint64_t /*cycle*/) {}
+};
+
 class FbSlot {
 public:
   FbKind kind = FbKind::Other;
@@ -66,6 +87,7 @@ public:
   double endVelocity = 0;           // planned end velocity (continuous moves, blending hand-over)
   int8_t levelDir = 0;              // MC_Jog / SMC_Inch: direction of the step or jog in progress
   int64_t sinceNs = 0;              // MC_Power: when the enable request began
+  std::unique_ptr<FbBehaviour> behaviour;   // FBs the kernel does not implement itself
 
   void sync() { if (publish) publish(instance, out); }
 };

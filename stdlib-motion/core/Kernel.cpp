@@ -161,7 +161,8 @@ void Kernel::fail(FbSlot& fb, Error e, const CallCtx& c) {
 }
 
 // The axis refuses motion commands in these states (error per state).
-static Error motionStateError(const Axis& ax, const VendorProfile& vp) {
+Error Kernel::motionStateError(const Axis& ax) const {
+  const VendorProfile& vp = profile;
   switch (ax.state()) {
     case AxisState::PowerOff: return Error::RegulatorOrStartNotSet;
     case AxisState::ErrorStop: return Error::NotReadyForMotion;
@@ -196,6 +197,11 @@ void Kernel::startCommand(FbSlot& fb, Axis& ax, int64_t nowNs, double frac) {
   fb.axis = &ax;
   fb.out.busy = fb.out.active = true;
   fb.out.inState = false;
+  if (fb.behaviour) {
+    fb.behaviour->start(*this, fb, ax, nowNs);
+    fb.sync();
+    return;
+  }
   const MoveInputs& in = fb.in;
   Limits lim = ax.limitsFor(std::fabs(in.velocity), in.acceleration, in.deceleration, in.jerk);
   const double startPos = frac != 0 && ax.movement().kind != Movement::Kind::None ? fb.target : ax.set().p;
@@ -410,7 +416,7 @@ void Kernel::callMove(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, 
   }
   fb.axis = &ax;
   if (Error e = validateMove(fb.kind, in, ax); e != Error::None) return fail(fb, e, c);
-  if (Error e = motionStateError(ax, profile); e != Error::None) return fail(fb, e, c);
+  if (Error e = motionStateError(ax); e != Error::None) return fail(fb, e, c);
   if (ax.config().drive.kind == AxisKind::Encoder) return fail(fb, Error::NotReadyForMotion, c);
   fb.in = in;
   if (fb.kind == FbKind::MoveVelocity) {
@@ -446,7 +452,7 @@ void Kernel::callHalt(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, 
   }
   fb.axis = &ax;
   if (!finitePositive(in.deceleration) || !std::isfinite(in.jerk) || in.jerk < 0) return fail(fb, Error::StopInvalidAccDec, c);
-  if (Error e = motionStateError(ax, profile); e != Error::None) return fail(fb, e, c);
+  if (Error e = motionStateError(ax); e != Error::None) return fail(fb, e, c);
   fb.in = in;
   fb.in.velocity = std::max(std::fabs(ax.set().v), 1e-9);
   fb.in.acceleration = in.deceleration;
@@ -504,7 +510,7 @@ void Kernel::callJog(FbSlot& fb, Axis& ax, bool forward, bool backward, const Mo
       fb.levelDir = want;
       return fail(fb, Error::MvInvalidAccDec, c);
     }
-    if (Error e = motionStateError(ax, profile); e != Error::None) {
+    if (Error e = motionStateError(ax); e != Error::None) {
       fb.levelDir = want;
       return fail(fb, e, c);
     }
@@ -559,7 +565,7 @@ void Kernel::callInch(FbSlot& fb, Axis& ax, bool forward, bool backward, const M
     if (!finitePositive(in.velocity) || !finitePositive(in.acceleration) || !finitePositive(in.deceleration) ||
         !std::isfinite(in.jerk) || in.jerk < 0 || !std::isfinite(in.distance))
       return fail(fb, Error::MrInvalidVelAcc, c);
-    if (Error e = motionStateError(ax, profile); e != Error::None) return fail(fb, e, c);
+    if (Error e = motionStateError(ax); e != Error::None) return fail(fb, e, c);
     fb.in = in;
     fb.in.distance = want * std::fabs(in.distance);
     fb.in.bufferMode = BufferMode::Aborting;
@@ -606,6 +612,7 @@ void Kernel::stepAxis(Axis& ax, int64_t nowNs, double dt, uint64_t cycle) {
   // A command in control must be called in every cycle until its motion ends.
   if (FbSlot* fb = ax.controller; fb && fb->out.busy && fb->lastCallCycle != cycle && fb->kind != FbKind::Stop)
     errorStop(ax, Error::FbWasntCalledDuringMotion, nowNs, cycle);
+  if (FbSlot* fb = ax.controller; fb && fb->behaviour) fb->behaviour->beforeStep(*this, *fb, ax, nowNs, cycle);
   StepResult r = ax.step(nowNs, dt);
   if (r.error != Error::None) errorStop(ax, r.error, nowNs, cycle);
   if (r.superimposedReached && ax.superimposer) finish(*ax.superimposer, nullptr, cycle, true, false, Error::None);
@@ -615,6 +622,10 @@ void Kernel::stepAxis(Axis& ax, int64_t nowNs, double dt, uint64_t cycle) {
       (ax.state() == AxisState::DiscreteMotion || ax.state() == AxisState::ContinuousMotion ||
        (ax.state() == AxisState::Stopping && !ax.blockingStop)))
     ax.setState(AxisState::Standstill);
+  for (size_t i = 0; i < ax.observers.size(); ++i) {
+    FbSlot* o = ax.observers[i];
+    if (o->behaviour) o->behaviour->afterStep(*this, *o, ax, nowNs, cycle);
+  }
   updatePower(ax, nowNs, cycle);
   completeReset(ax, cycle);
   // Terminal outputs that rose with Execute FALSE were visible for one cycle.
@@ -636,9 +647,14 @@ void Kernel::stepAxis(Axis& ax, int64_t nowNs, double dt, uint64_t cycle) {
   if (axisStepped) axisStepped(ax);
 }
 
+void FbBehaviour::reached(Kernel& k, FbSlot&, Axis& ax, int64_t nowNs, uint64_t cycle, double overshoot) {
+  k.completeCommand(ax, nowNs, cycle, overshoot);
+}
+
 void Kernel::onReached(Axis& ax, int64_t nowNs, uint64_t cycle, double overshoot) {
   FbSlot* fb = ax.controller;
   if (!fb) return;
+  if (fb->behaviour) return fb->behaviour->reached(*this, *fb, ax, nowNs, cycle, overshoot);
   switch (fb->kind) {
     case FbKind::MoveVelocity:
     case FbKind::Jog:
@@ -669,15 +685,21 @@ void Kernel::onReached(Axis& ax, int64_t nowNs, uint64_t cycle, double overshoot
       return;
     default: break;
   }
-  // Position moves and MC_Halt: Done at the target (velocity 0) or at the hand-over velocity.
+  completeCommand(ax, nowNs, cycle, overshoot);
+}
+
+// Position moves and MC_Halt: Done at the target (velocity 0) or at the hand-over velocity.
+void Kernel::completeCommand(Axis& ax, int64_t nowNs, uint64_t cycle, double overshoot) {
+  FbSlot* fb = ax.controller;
+  if (!fb) return;
   ax.controller = nullptr;
-  const bool blended = ax.movement().kind != Movement::Kind::None && ax.movement().profile.end().v != 0;
+  const bool blended = ax.movement().kind != Movement::Kind::None && ax.movement().end().v != 0;
   finish(*fb, nullptr, cycle, true, false, Error::None);
   if (!ax.queue.empty()) {
     FbSlot* next = ax.queue.front();
     ax.queue.erase(ax.queue.begin());
     // Buffered: Active now, interpolation from the next cycle; blending: continues from the exact hand-over instant.
-    if (blended) next->target = ax.movement().profile.end().p;
+    if (blended) next->target = ax.movement().end().p;
     startCommand(*next, ax, nowNs, blended ? overshoot : 0);
     if (blended && overshoot == 0) ax.sample(nowNs);
     return;

@@ -64,17 +64,26 @@ public:
   VendorProfile profile;
   uint64_t callCounter = 0;
 
-private:
-  // Output-rule helpers.
+  // ---- output rules and command handling, for the instruction modules
+  // (homing, profiles, probes ...) that attach an FbBehaviour to their slot.
   bool beginExecute(FbSlot& fb, bool execute, const CallCtx& c);   // true on a rising edge
+  // Ends fb's command: Done / CommandAborted / Error e (held or one cycle, per the output rules).
   void finish(FbSlot& fb, const CallCtx* c, uint64_t cycle, bool done, bool aborted, Error e);
+  // Refuses a command: Error with e, nothing started.
   void fail(FbSlot& fb, Error e, const CallCtx& c);
+  // The error a motion command gets in the axis's current state (None: may start).
+  Error motionStateError(const Axis& ax) const;
   void abortController(Axis& ax, uint64_t cycle, Error e = Error::None);
+  // Starts fb now (Aborting) or queues it behind the running command (buffer modes).
   void accept(FbSlot& fb, Axis& ax, const CallCtx& c);
   void startCommand(FbSlot& fb, Axis& ax, int64_t nowNs, double frac);
+  void errorStop(Axis& ax, Error e, int64_t nowNs, uint64_t cycle);
+  // The command in control ended normally at this cycle: Done, then the next buffered command starts.
+  void completeCommand(Axis& ax, int64_t nowNs, uint64_t cycle, double overshoot);
+
+private:
   void stepAxis(Axis& ax, int64_t nowNs, double dt, uint64_t cycle);
   void onReached(Axis& ax, int64_t nowNs, uint64_t cycle, double overshoot);
-  void errorStop(Axis& ax, Error e, int64_t nowNs, uint64_t cycle);
   void updatePower(Axis& ax, int64_t nowNs, uint64_t cycle);
   void completeReset(Axis& ax, uint64_t cycle);
   // MC_Power reports an error when the drive is not enabled this long after the request.
