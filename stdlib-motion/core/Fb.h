@@ -15,7 +15,9 @@ namespace stc::motion {
 
 enum class FbKind : uint8_t {
   Power, Reset, MoveAbsolute, MoveRelative, MoveAdditive, MoveSuperImposed, MoveVelocity,
-  MoveContinuousAbsolute, MoveContinuousRelative, Halt, Stop, Jog, Inch, SetPosition, Home, Other,
+  MoveContinuousAbsolute, MoveContinuousRelative, Halt, Stop, Jog, Inch, SetPosition, Home,
+  // Kinds whose semantics live in an FbBehaviour (see below), one per family.
+  Profile, Follow, Torque, Probe, CamSwitch, Parameter, Config, Diagnostic, Leadshine, Other,
 };
 
 struct FbOutputs {
