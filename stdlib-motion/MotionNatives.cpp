@@ -1,6 +1,7 @@
 #include "stdlib-motion/MotionNatives.h"
 
 #include <algorithm>
+#include <cmath>
 #include <toml++/toml.h>
 
 #include "vm/Native.h"
@@ -140,7 +141,7 @@ bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::
       return false;
     };
     std::string kind = "virtual", drive = "ideal", ramp = "trapez";
-    double swPos = NAN, swNeg = NAN, limPos = NAN, limNeg = NAN;
+    double swPos = NAN, swNeg = NAN, limPos = NAN, limNeg = NAN, channel = -1;
     if (!str("name", c.name) || !str("task", c.task) || !str("type", kind) || !str("drive", drive) || !str("ramp", ramp) ||
         !num("period", c.period) || !num("increments_per_unit", c.drive.incrementsPerUnit) || !num("max_velocity", c.maxVelocity) ||
         !num("max_acceleration", c.maxAcceleration) || !num("max_deceleration", c.maxDeceleration) || !num("max_jerk", c.maxJerk) ||
@@ -148,8 +149,13 @@ bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::
         !num("lag_time", c.drive.lagTime) || !num("kv", c.drive.kv) || !num("following_error_limit", c.drive.followingErrorLimit) ||
         !num("inertia", c.drive.inertia) || !num("encoder_velocity", c.drive.encoderVelocity) ||
         !num("limit_switch_positive", limPos) || !num("limit_switch_negative", limNeg) || !num("index_period", c.drive.indexPeriod) ||
-        !num("index_offset", c.drive.indexOffset))
+        !num("index_offset", c.drive.indexOffset) || !num("encoder_channel", channel))
       return false;
+    if (channel != -1 && (channel != std::floor(channel) || channel < 0 || channel > 2)) {
+      error = where(file, node) + "axis '" + c.name + "': encoder_channel must be 0, 1 or 2";
+      return false;
+    }
+    c.encoderChannel = static_cast<int>(channel);
     if (c.name.empty()) {
       error = where(file, node) + "[[axis]] needs a name (the AXIS_REF variable it drives)";
       return false;

@@ -12,6 +12,11 @@
 #include "stdlib-motion/core/Kernel.h"
 #include "vm/Native.h"
 
+namespace stc::motion {
+// Per-family registration, called by registerSm3Natives().
+void registerLeadshineNatives();
+}  // namespace stc::motion
+
 namespace stc::motion::sm3face {
 
 namespace sm3 = stc::native::sm3;

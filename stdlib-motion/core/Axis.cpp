@@ -227,7 +227,9 @@ StepResult Axis::step(int64_t nowNs, double dt) {
   else if (state_ != AxisState::PowerOff && state_ != AxisState::Homing &&
            ((drive_.limitPositiveActive() && set_.v > 0) || (drive_.limitNegativeActive() && set_.v < 0)))
     r.error = Error::HwLimitsExceeded;
-  else if (cfg_.swLimitEnable && state_ != AxisState::Homing && (set_.p > cfg_.swLimitPositive || set_.p < cfg_.swLimitNegative))
+  else if (cfg_.swLimitEnable && state_ != AxisState::Homing &&
+           ((set_.p > cfg_.swLimitPositive && set_.v > 0) || (set_.p < cfg_.swLimitNegative && set_.v < 0)))
+    // Only motion further out trips: an axis reset outside a limit may move back in.
     r.error = Error::SwLimitsExceeded;
   else if (cfg_.drive.followingErrorLimit > 0 && std::fabs(set_.p - drive_.actPosition()) > cfg_.drive.followingErrorLimit)
     r.error = Error::FollowingError;

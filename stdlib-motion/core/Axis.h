@@ -36,6 +36,7 @@ enum class RampType : uint8_t { Trapez = 0, SinSquare = 1, Quadratic = 2, Quadra
 struct AxisConfig {
   std::string name;              // the AXIS_REF global it is bound to ("" = bound from ST)
   std::string task;              // owning task; "" = the task of the first FB call on it
+  int encoderChannel = -1;       // Encoder axes: the controller's local encoder input 0..2 (LS_Encoder_SetAxisMove)
   DriveConfig drive;             // kind, model, scaling, switches, faults
   double period = 0;             // modulo period [u]; 0 = linear axis
   // Dynamic limits (fMaxVelocity ...): set values beyond them are errors 40-42.  0 = not checked.

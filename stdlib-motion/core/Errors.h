@@ -38,6 +38,7 @@ enum class Error : uint16_t {
   StopDirectionNotApplicable = 182,  // SMC_MS_DIRECTION_NOT_APPLICABLE
   StopAxisInErrorStop = 183,         // SMC_MS_AXIS_IN_ERRORSTOP
   BlockingStopWasntCalled = 184,     // SMC_BLOCKING_MC_STOP_WASNT_CALLED
+  UnknownTaskInterval = 200,         // SMC_UNKNOWN_TASK_INTERVAL
   MaInvalidVelAcc = 201,             // SMC_MA_INVALID_VELACC_VALUES
   MaInvalidDirection = 202,          // SMC_MA_INVALID_DIRECTION
   MrInvalidVelAcc = 226,             // SMC_MR_INVALID_VELACC_VALUES

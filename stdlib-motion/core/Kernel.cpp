@@ -592,8 +592,12 @@ void Kernel::callSetPosition(FbSlot& fb, Axis& ax, bool execute, double position
 
 void Kernel::cycle(uint32_t task, int64_t nowNs, int64_t intervalNs, uint64_t cycle) {
   const double dt = static_cast<double>(intervalNs) * 1e-9;
+  // Encoder-only axes are inputs: they are stepped first, so every axis that
+  // follows one sees its value of this cycle, whatever the order of the axes.
   for (auto& a : axes_)
-    if (a->task == task) stepAxis(*a, nowNs, dt, cycle);
+    if (a->task == task && a->config().drive.kind == AxisKind::Encoder) stepAxis(*a, nowNs, dt, cycle);
+  for (auto& a : axes_)
+    if (a->task == task && a->config().drive.kind != AxisKind::Encoder) stepAxis(*a, nowNs, dt, cycle);
 }
 
 void Kernel::errorStop(Axis& ax, Error e, int64_t nowNs, uint64_t cycle) {

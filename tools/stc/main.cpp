@@ -284,8 +284,8 @@ int runRun(const BuildArgs& a) {
 void addCompileOptions(CLI::App* cmd, BuildArgs& a) {
   cmd->add_option("paths", a.paths, "Files (.st, .exp) or project directories")->required();
   cmd->add_option("--dialect", a.dialect, "Language dialect (default: the project's, else iec)")->check(CLI::IsMember({"iec", "codesys"}));
-  cmd->add_option("-D,--define", a.defines, "Define NAME for {IF defined(NAME)} pragmas");
-  cmd->add_option("--lib", a.libs, "Compile in an optional library (e.g. codesys_sm3)")->check(CLI::IsMember(availableLibraries()));
+  cmd->add_option("-D,--define", a.defines, "Define NAME for {IF defined(NAME)} pragmas")->allow_extra_args(false);
+  cmd->add_option("--lib", a.libs, "Compile in an optional library (e.g. codesys_sm3)")->check(CLI::IsMember(availableLibraries()))->allow_extra_args(false);
   cmd->add_option("-O", a.opt, "Optimisation level 0-3 (-O0 .. -O3)")->check(CLI::IsMember({"0", "1", "2", "3"}));
   cmd->add_flag("--no-checks", a.noChecks, "Drop the runtime checks (division by zero, bounds, NULL, subranges)");
   cmd->add_flag("-g", a.debug, "Emit debug information");
@@ -308,8 +308,8 @@ int main(int argc, char** argv) {
   CLI::App* check = app.add_subcommand("check", "Parse and analyse ST sources or project directories");
   check->add_option("paths", ca.paths, "Files (.st, .exp) or project directories")->required();
   check->add_option("--dialect", ca.dialect, "Language dialect (default: the project's, else iec)")->check(CLI::IsMember({"iec", "codesys"}));
-  check->add_option("-D,--define", ca.defines, "Define NAME for {IF defined(NAME)} pragmas");
-  check->add_option("--lib", ca.libs, "Compile in an optional library (e.g. codesys_sm3)")->check(CLI::IsMember(availableLibraries()));
+  check->add_option("-D,--define", ca.defines, "Define NAME for {IF defined(NAME)} pragmas")->allow_extra_args(false);
+  check->add_option("--lib", ca.libs, "Compile in an optional library (e.g. codesys_sm3)")->check(CLI::IsMember(availableLibraries()))->allow_extra_args(false);
   check->add_option("--format", ca.format, "Diagnostic format")->check(CLI::IsMember({"text", "json"}));
   check->add_option("--color", ca.color, "Colour diagnostics")->check(CLI::IsMember({"auto", "always", "never"}));
   check->add_flag("--verify", ca.verify, "Check diagnostics against expected-error/warning/note comments in each file");
@@ -332,9 +332,9 @@ int main(int argc, char** argv) {
   auto* cyc = run->add_option("--cycles", ra.cycles, "Run N cycles of the fastest task");
   run->add_option("--for", ra.forDuration, "Run for a simulated duration (10s, 250ms, T#1s500ms)")->excludes(cyc);
   run->add_option("--interval", ra.interval, "Cycle time of the implicit task (default 1ms)");
-  run->add_option("--program", ra.programs, "PROGRAM(s) the implicit task runs (without a CONFIGURATION)");
-  run->add_option("--watch", ra.watches, "Print VAR after the run (MAIN.fb.Q, GVL.x, arr[3])");
-  run->add_option("--trace", ra.traces, "Record VAR,... at every tick");
+  run->add_option("--program", ra.programs, "PROGRAM(s) the implicit task runs (without a CONFIGURATION)")->allow_extra_args(false);
+  run->add_option("--watch", ra.watches, "Print VAR after the run (MAIN.fb.Q, GVL.x, arr[3])")->allow_extra_args(false);
+  run->add_option("--trace", ra.traces, "Record VAR,... at every tick")->allow_extra_args(false);
   run->add_option("--trace-out", ra.traceOut, "Trace file: .csv or .vcd");
   run->add_flag("--realtime", ra.realtime, "Pace the simulated clock to the wall clock");
   run->add_flag("--stats", ra.stats, "Print per-task statistics");

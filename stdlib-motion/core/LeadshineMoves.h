@@ -1,0 +1,82 @@
+// Semantics of Leadshine's single-axis blocks (PMC_SingleAxisLib,
+// PMC_IpoLib, PMC_Controller) on the common kernel: moves with a start
+// (jump) velocity and a creep velocity, on-the-fly target/velocity changes,
+// the two-segment position-to-velocity move and handwheel following.
+// Decisions where the manual is silent: docs/motion.md ("Leadshine blocks").
+#pragma once
+
+#include <memory>
+
+#include "stdlib-motion/core/Kernel.h"
+
+namespace stc::motion::leadshine {
+
+// Trapezoid with velocity jumps (LS_MoveAbs / LS_MoveRel / LS_MoveVel): the
+// velocity jumps to vStart, ramps with `acc` to vMax (acc = 0: jumps), and
+// for a position target ramps with `dec` down to vCreep, reaches the target
+// at vCreep and stops there (a jump to 0).  On distances too short for the
+// ramps the acceleration limits are kept and the peak (or the arrival)
+// velocity adapts.  Positions relative to the start position p0.
+class JumpTrapezoid : public Generator {
+public:
+  static std::shared_ptr<JumpTrapezoid> position(double p0, double distance, double vStart, double vMax, double vCreep,
+                                                 double acc, double dec);
+  // Velocity target: ramps from vStart to |v| in the direction of v, then runs on.
+  static std::shared_ptr<JumpTrapezoid> velocity(double p0, double v, double vStart, double acc);
+  Kinematic at(double t) const override;
+  double duration() const override { return t1_ + t2_ + t3_; }
+  double peakVelocity() const { return vp_; }
+
+private:
+  double p0_ = 0, sign_ = 1;
+  double v0_ = 0, vp_ = 0, ve_ = 0;    // start, peak, arrival speed
+  double a_ = 0, d_ = 0;               // ramp rates (0: the ramp is a jump)
+  double t1_ = 0, t2_ = 0, t3_ = 0;    // ramp up, cruise, ramp down
+  bool stops_ = true;                  // position target: velocity 0 at the end
+};
+
+struct StartVelInputs {
+  double position = 0, distance = 0, velocity = 0, acceleration = 0, deceleration = 0;
+  double startVel = 20, endSecondVel = 20;
+  Direction direction = Direction::Shortest;
+};
+
+// LS_MoveAbs (kind MoveAbsolute), LS_MoveRel (MoveRelative), LS_MoveVel (MoveVelocity) on an Execute edge.
+void callStartVelMove(Kernel& k, FbSlot& fb, Axis& ax, bool execute, FbKind kind, const StartVelInputs& in, const CallCtx& c);
+
+// LS_MoveAbsChangePosVel (kind MoveAbsolute) and LS_MoveChangeVel (kind
+// MoveVelocity, in.direction = +1 / -1): an Execute edge starts the move;
+// while Execute stays TRUE and the command runs, changed inputs replan it
+// from the current state at once.
+void callChangeOnTheFly(Kernel& k, FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, const CallCtx& c);
+
+// LS_PositionToVelocity: segment 0 to endPos[0] at velocity[0], then segment
+// 1 to endPos[1] at velocity[1] without stopping in between (when both go the
+// same way).  Exec / Halt / Stop are edge inputs.
+struct TwoSegmentInputs {
+  bool exec = false, halt = false, stop = false;
+  uint32_t ipoCycleUs = 2000;
+  bool relative = false;
+  int velocityMode = 1;   // 0 trapezoid, 1 sigmoid (jerk-limited), 3 quadratic (jerk-limited, jerk required)
+  double endPos[2]{}, velocity[2]{}, acceleration[2]{}, deceleration[2]{}, jerk[2]{};
+};
+struct TwoSegmentOutputs { bool commandHalt = false; double vel = 0; };
+void callPositionToVelocity(Kernel& k, FbSlot& fb, Axis& ax, const TwoSegmentInputs& in, TwoSegmentOutputs& out, const CallCtx& c);
+
+// LS_Encoder_SetAxisMove: the axis follows the local encoder `channel`
+// (an encoder axis with that encoderChannel): target = start position +
+// (encoder increments since the start) * num / denom + additions, smoothed by
+// a first-order filter of `filter` cycles.  Exec / Stop / additiveTrig are edges.
+struct HandwheelInputs {
+  bool exec = false, stop = false;
+  int channel = 0, num = 1, denom = 1, filter = 2;
+  bool additiveTrig = false;
+  double additivePos = 0;
+  uint32_t additiveCycles = 1;
+};
+struct HandwheelOutputs { bool done = false, error = false; int32_t errorId = 0; double deltaPulseUnit = 0; };
+// The Leadshine parameter error (GVL_Err.IpoErrID_ParaErr).
+constexpr int32_t kIpoParaErr = -2;
+void callHandwheel(Kernel& k, FbSlot& fb, Axis& ax, const HandwheelInputs& in, HandwheelOutputs& out, const CallCtx& c);
+
+}  // namespace stc::motion::leadshine
