@@ -175,6 +175,8 @@ void Drive::cycle(double setPos, double setVel, double setAcc, double dt, int64_
   if (state_ != Cia402::OperationEnabled && state_ != Cia402::QuickStopActive) {
     actVel_ = 0;          // power stage off: the (braked) motor holds its position
     actTorque_ = 0;
+    lagSetPos_ = actPos_;
+    lagSetVel_ = 0;
     return;
   }
   switch (cfg_.model) {
@@ -188,15 +190,28 @@ void Drive::cycle(double setPos, double setVel, double setAcc, double dt, int64_
       }
       break;
     case DriveModel::Lag: {
-      const double vCmd = setVel + cfg_.kv * (setPos - actPos_);
-      const double k = cfg_.lagTime > 0 ? 1.0 - std::exp(-dt / cfg_.lagTime) : 1.0;
-      const double v0 = actVel_;
-      actVel_ += (vCmd - actVel_) * k;
-      actPos_ += 0.5 * (v0 + actVel_) * dt;
+      // The exact response of the first-order velocity loop over the cycle to
+      // a command that goes linearly from its value at the previous cycle to
+      // this one (feed-forward velocity + kv x the position error at the start
+      // of the cycle).  Holding this cycle's command for the whole cycle would
+      // make the motor lead the set point by about one cycle.
+      const double e0 = lagSetPos_ - actPos_;
+      const double u0 = lagSetVel_ + cfg_.kv * e0, u1 = setVel + cfg_.kv * e0;
+      const double tau = cfg_.lagTime;
+      if (tau <= 0 || dt <= 0) {
+        actPos_ += 0.5 * (u0 + u1) * dt;
+        actVel_ = u1;
+      } else {
+        const double slope = (u1 - u0) / dt, E = std::exp(-dt / tau), c = actVel_ - u0 + slope * tau;
+        actPos_ += u0 * dt + slope * dt * dt / 2 - slope * tau * dt + c * tau * (1 - E);
+        actVel_ = u1 - slope * tau + c * E;
+      }
       break;
     }
   }
   actTorque_ = cfg_.inertia * setAcc;
+  lagSetPos_ = setPos;
+  lagSetVel_ = setVel;
 }
 
 bool Drive::limitPositiveActive() const { return forcedLimitPos_ || (cfg_.hasLimitPositive && actPos_ >= cfg_.limitPositive); }

@@ -89,8 +89,8 @@ public:
   double actPosition() const { return actPos_; }
   double actVelocity() const { return actVel_; }
   double actTorque() const { return actTorque_; }
-  void shift(double delta) { actPos_ += delta; prevPos_ += delta; }
-  void place(double pos) { actPos_ = prevPos_ = pos; actVel_ = 0; }
+  void shift(double delta) { actPos_ += delta; prevPos_ += delta; lagSetPos_ += delta; }
+  void place(double pos) { actPos_ = prevPos_ = lagSetPos_ = pos; actVel_ = lagSetVel_ = 0; }
 
   // ---- sensors (levels at the current actual position)
   bool limitPositiveActive() const;
@@ -110,6 +110,7 @@ private:
   bool communication_ = true;
   bool forcedLimitPos_ = false, forcedLimitNeg_ = false;
   double actPos_ = 0, actVel_ = 0, actTorque_ = 0, prevPos_ = 0;
+  double lagSetPos_ = 0, lagSetVel_ = 0;   // the set point of the previous cycle (Lag model)
   int8_t modesOfOperation_ = 8;      // 0x6060: cyclic synchronous position
   struct Object { uint16_t index; uint8_t sub; bool writable; int64_t value; };
   std::vector<Object> od_;
