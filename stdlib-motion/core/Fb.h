@@ -94,4 +94,12 @@ public:
   void sync() { if (publish) publish(instance, out); }
 };
 
+// The behaviour of type T attached to fb, created on first use.
+template <class T>
+T& behaviourOf(FbSlot& fb) {
+  if (auto* b = dynamic_cast<T*>(fb.behaviour.get())) return *b;
+  fb.behaviour = std::make_unique<T>();
+  return static_cast<T&>(*fb.behaviour);
+}
+
 }  // namespace stc::motion

@@ -150,11 +150,7 @@ void callStartVelMove(Kernel& k, FbSlot& fb, Axis& ax, bool execute, FbKind kind
     return k.fail(fb, Error::MvDirectionNotApplicable, c);
   if (Error e = k.motionStateError(ax); e != Error::None) return k.fail(fb, e, c);
   if (ax.config().drive.kind == AxisKind::Encoder) return k.fail(fb, Error::NotReadyForMotion, c);
-  auto* b = dynamic_cast<StartVelMove*>(fb.behaviour.get());
-  if (!b) {
-    fb.behaviour = std::make_unique<StartVelMove>();
-    b = static_cast<StartVelMove*>(fb.behaviour.get());
-  }
+  StartVelMove* b = &behaviourOf<StartVelMove>(fb);
   b->in = in;
   fb.in = MoveInputs{};
   fb.in.velocity = in.velocity;
@@ -253,11 +249,7 @@ public:
 }  // namespace
 
 void callPositionToVelocity(Kernel& k, FbSlot& fb, Axis& ax, const TwoSegmentInputs& in, TwoSegmentOutputs& out, const CallCtx& c) {
-  auto* b = dynamic_cast<TwoSegmentMove*>(fb.behaviour.get());
-  if (!b) {
-    fb.behaviour = std::make_unique<TwoSegmentMove>();
-    b = static_cast<TwoSegmentMove*>(fb.behaviour.get());
-  }
+  TwoSegmentMove* b = &behaviourOf<TwoSegmentMove>(fb);
   // Halt and Stop are edges of their own inputs; their previous levels live in the behaviour.
   const bool haltEdge = in.halt && !b->in.halt, stopEdge = in.stop && !b->in.stop;
   const bool inControl = ax.controller == &fb && fb.out.busy;
@@ -369,11 +361,7 @@ public:
 }  // namespace
 
 void callHandwheel(Kernel& k, FbSlot& fb, Axis& ax, const HandwheelInputs& in, HandwheelOutputs& out, const CallCtx& c) {
-  auto* b = dynamic_cast<Handwheel*>(fb.behaviour.get());
-  if (!b) {
-    fb.behaviour = std::make_unique<Handwheel>();
-    b = static_cast<Handwheel*>(fb.behaviour.get());
-  }
+  Handwheel* b = &behaviourOf<Handwheel>(fb);
   const bool stopEdge = in.stop && !b->in.stop, trigEdge = in.additiveTrig && !b->in.additiveTrig;
   const bool rising = in.exec && !fb.execute;
   b->in.stop = in.stop;
