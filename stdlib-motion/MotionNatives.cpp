@@ -187,6 +187,29 @@ bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::
     }
     if (!std::isnan(limPos)) c.drive.hasLimitPositive = true, c.drive.limitPositive = limPos;
     if (!std::isnan(limNeg)) c.drive.hasLimitNegative = true, c.drive.limitNegative = limNeg;
+    // Scaling from the mechanics: increments per motor revolution, gear ratio
+    // [motor revolutions, output revolutions], technical units per output revolution.
+    double resolution = NAN, unitsPerRev = NAN;
+    if (!num("encoder_resolution", resolution) || !num("units_per_revolution", unitsPerRev)) return false;
+    const toml::array* gear = t->get_as<toml::array>("gear_ratio");
+    if (!std::isnan(resolution) || !std::isnan(unitsPerRev) || gear) {
+      double motorRevs = 1, outputRevs = 1;
+      if (gear && (gear->size() != 2 || !gear->get(0)->value<double>() || !gear->get(1)->value<double>() ||
+                   !(*gear->get(0)->value<double>() > 0) || !(*gear->get(1)->value<double>() > 0))) {
+        error = where(file, *gear) + "axis '" + c.name + "': gear_ratio must be [motor_revolutions, output_revolutions], both > 0";
+        return false;
+      }
+      if (gear) {
+        motorRevs = *gear->get(0)->value<double>();
+        outputRevs = *gear->get(1)->value<double>();
+      }
+      if (t->get("increments_per_unit") || !(resolution > 0) || !(unitsPerRev > 0)) {
+        error = where(file, node) + "axis '" + c.name +
+                "': give either increments_per_unit, or encoder_resolution and units_per_revolution (> 0, with an optional gear_ratio)";
+        return false;
+      }
+      c.drive.incrementsPerUnit = resolution * motorRevs / outputRevs / unitsPerRev;
+    }
     if (const toml::array* hs = t->get_as<toml::array>("home_switch")) {
       if (hs->size() != 2 || !hs->get(0)->value<double>() || !hs->get(1)->value<double>()) {
         error = where(file, *hs) + "axis '" + c.name + "': home_switch must be [low, high]";
