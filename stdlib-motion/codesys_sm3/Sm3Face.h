@@ -12,6 +12,10 @@
 #include "stdlib-motion/core/Kernel.h"
 #include "vm/Native.h"
 
+namespace stc::motion {
+void registerSm3ConfigNatives();   // Sm3Config.cpp: parameter access and axis configuration
+}  // namespace stc::motion
+
 namespace stc::motion::sm3face {
 
 namespace sm3 = stc::native::sm3;
