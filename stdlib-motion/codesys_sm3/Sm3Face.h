@@ -15,6 +15,7 @@
 namespace stc::motion {
 // Per-family registration, called by registerSm3Natives().
 void registerLeadshineNatives();
+void registerSm3ConfigNatives();   // Sm3Config.cpp: parameter access and axis configuration
 }  // namespace stc::motion
 
 namespace stc::motion::sm3face {

@@ -187,6 +187,7 @@ namespace stc::motion {
 
 void registerSm3Natives() {
   registerLeadshineNatives();
+  registerSm3ConfigNatives();
   STC_SM3_NATIVE(MC_Power, MC_Power)
   STC_SM3_NATIVE(MC_Reset, MC_Reset)
   STC_SM3_NATIVE(MC_MoveAbsolute, moveBody<sm3::MC_MoveAbsolute, FbKind::MoveAbsolute>)

@@ -1,5 +1,6 @@
 #include "stdlib-motion/core/Axis.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace stc::motion {
@@ -52,7 +53,17 @@ Limits Axis::limitsFor(double vel, double acc, double dec, double jerk) const {
   l.vel = vel;
   l.acc = acc;
   l.dec = dec;
-  l.jerk = cfg_.ramp == RampType::Trapez ? 0.0 : jerk;
+  switch (cfg_.ramp) {
+    case RampType::Trapez: l.jerk = 0; break;
+    case RampType::SinSquare: {
+      // A sin² ramp from 0 to vel with peak acceleration A lasts 2 vel / A: the
+      // triangular jerk-limited ramp with jerk A^2 / vel has the same time and peak.
+      const double a = std::max(acc, dec);
+      l.jerk = vel > 0 && a > 0 && std::isfinite(a * a / vel) ? a * a / vel : 0.0;
+      break;
+    }
+    default: l.jerk = jerk; break;
+  }
   return l;
 }
 
@@ -252,6 +263,14 @@ void Axis::enterErrorStop(Error e, int64_t nowNs) {
     return;
   }
   double dec = cfg_.errorDeceleration > 0 ? cfg_.errorDeceleration : cfg_.maxDeceleration > 0 ? cfg_.maxDeceleration : 1000.0;
+  if (e == Error::SwLimitsExceeded) {
+    if (!cfg_.swLimitDecelerate) {
+      holdAt(set_.p);     // no ramp: the set point stops where it tripped
+      return;
+    }
+    if (cfg_.swLimitDeceleration > 0) dec = cfg_.swLimitDeceleration;
+    if (cfg_.swErrorMaxDistance > 0) dec = std::max(dec, set_.v * set_.v / (2 * cfg_.swErrorMaxDistance));
+  }
   if (set_.v != 0 || set_.a != 0) {
     startStop(Limits{std::fabs(set_.v), dec, dec, 0}, nowNs);
   } else {

@@ -46,6 +46,11 @@ struct AxisConfig {
   double swLimitPositive = 0, swLimitNegative = 0;
   double errorDeceleration = 0;  // stop ramp in ErrorStop; 0 = maxDeceleration, else 1e3 u/s^2 if that is 0 too
   RampType ramp = RampType::Trapez;
+  // Reaction to a software limit (error 10; SMC_SetSoftwareLimits, parameters 1203/1250):
+  // brake with swLimitDeceleration (0 = the error deceleration), at least hard enough to
+  // stand within swErrorMaxDistance (0 = no bound); swLimitDecelerate FALSE: stop at once.
+  bool swLimitDecelerate = true;
+  double swLimitDeceleration = 0, swErrorMaxDistance = 0;
 };
 
 class FbSlot;
@@ -138,7 +143,8 @@ public:
   // MC_SetPosition: shifts set and actual position by `delta` (no motion).
   void shiftPosition(double delta);
 
-  // Limits of a command: jerk only with the quadratic ramp types.
+  // Limits of a command: jerk only with the quadratic ramp types; sin² ramps are planned
+  // jerk-limited with jerk = max(acc, dec)^2 / vel (docs/motion-config.md).
   Limits limitsFor(double vel, double acc, double dec, double jerk) const;
   // The unwrapped target of an absolute move (modulo direction rules).  False: invalid direction.
   bool absoluteTarget(double position, Direction dir, double& target) const;

@@ -42,6 +42,30 @@ Drive::Drive(const DriveConfig& cfg) : cfg_(cfg) {
       {0x60FD, 0, false, 0},        // digital inputs
       {0x60FF, 0, true, 0},         // target velocity
   };
+  // Further objects of the CiA402 quick reference (spec/amc1600c.md, appendix 2): stored
+  // values that MC_Read/WriteParameter reach by SDO (the motor model does not use them).
+  od_.insert(od_.end(), {
+      {0x6067, 0, true, 7},            // position window
+      {0x6068, 0, true, 0},            // position window time [ms]
+      {0x606D, 0, true, 100},          // velocity window
+      {0x606E, 0, true, 0},            // velocity window time [ms]
+      {0x6072, 0, true, 3000},         // max torque [0.1 %]
+      {0x607E, 0, true, 0},            // polarity
+      {0x6081, 0, true, 0},            // profile velocity
+      {0x6083, 0, true, 1747626667},   // profile acceleration
+      {0x6084, 0, true, 1747626667},   // profile deceleration
+      {0x6085, 0, true, 1747626667},   // quick-stop deceleration
+      {0x6086, 0, true, 0},            // motion profile type (linear)
+      {0x6087, 0, true, 0},            // torque slope
+      {0x60B0, 0, true, 0},            // position offset
+      {0x60B1, 0, true, 0},            // velocity offset
+      {0x60B2, 0, true, 0},            // torque offset
+      {0x60E0, 0, true, 2000},         // positive torque limit [0.1 %]
+      {0x60E1, 0, true, 2000},         // negative torque limit [0.1 %]
+      {0x60E6, 0, true, 0},            // position calculation method
+      {0x60FE, 1, true, 0},            // digital outputs
+      {0x6502, 0, false, 0x3AD},       // supported drive modes
+  });
   if (cfg_.followingErrorLimit > 0) writeObject(0x6065, 0, std::llround(cfg_.followingErrorLimit * cfg_.incrementsPerUnit));
 }
 

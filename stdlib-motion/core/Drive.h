@@ -65,6 +65,8 @@ public:
   explicit Drive(const DriveConfig& cfg);
 
   const DriveConfig& config() const { return cfg_; }
+  // Scaling changes (SMC_ChangeGearingRatio); sensors and faults are fixed at construction.
+  DriveConfig& mutableConfig() { return cfg_; }
   // ---- CiA402
   void setControlword(uint16_t cw) { controlword_ = cw; }
   // Devices without a bus (virtual, pulse, encoder) act on a controlword at once.

@@ -26,12 +26,20 @@ enum class Error : uint16_t {
   VdMaxDecelerationExceeded = 42,    // SMC_VD_MAX_DECELERATION_EXCEEDED
   HomingInvalidVelAcc = 50,          // SMC_3SH_INVALID_VELACC_VALUES
   HomingModeNeedsHwLimit = 51,       // SMC_3SH_MODE_NEEDS_HWLIMIT
+  CgrZeroValues = 90,                // SMC_CGR_ZERO_VALUES
+  CgrDrivePowered = 91,              // SMC_CGR_DRIVE_POWERED
+  CgrInvalidPosPeriod = 92,          // SMC_CGR_INVALID_POSPERIOD
+  CgrPosPeriodNotIntegral = 93,      // SMC_CGR_POSPERIOD_NOT_INTEGRAL
   PowerTaskCycleEmpty = 110,         // SMC_P_FTASKCYCLE_EMPTY
   ResetNoErrorToReset = 120,         // SMC_R_NO_ERROR_TO_RESET
   ResetDriveDoesntAnswer = 121,      // SMC_R_DRIVE_DOESNT_ANSWER
   ResetNotResettable = 122,          // SMC_R_ERROR_NOT_RESETTABLE
   ReadParamUnknown = 130,            // SMC_RP_PARAM_UNKNOWN
+  ReadParamRequestingError = 131,    // SMC_RP_REQUESTING_ERROR
+  ReadParamConversionError = 133,    // SMC_RP_PARAM_CONVERSION_ERROR
   WriteParamInvalid = 140,           // SMC_WP_PARAM_INVALID
+  WriteParamSendingError = 141,      // SMC_WP_SENDING_ERROR
+  WriteParamConversionError = 143,   // SMC_WP_PARAM_CONVERSION_ERROR
   HomeAxisWasntStandstill = 170,     // SMC_H_AXIS_WASNT_STANDSTILL
   HomeAxisDidntStartHoming = 171,    // SMC_H_AXIS_DIDNT_START_HOMING
   StopInvalidAccDec = 181,           // SMC_MS_INVALID_ACCDEC_VALUES
@@ -54,6 +62,13 @@ enum class Error : uint16_t {
   McaInvalidVelAcc = 451,            // SMC_MCA_INVALID_VELACC_VALUES
   McaInvalidDirection = 452,         // SMC_MCA_INVALID_DIRECTION
   McaDirectionNotApplicable = 453,   // SMC_MCA_DIRECTION_NOT_APPLICABLE
+  SdlInvalidAxisState = 475,         // SMC_SDL_INVALID_AXIS_STATE
+  SdlInvalidVelocityValues = 476,    // SMC_SDL_INVALID_VELOCITY_VALUES
+  SrtNotStandstillOrPoweroff = 850,  // SMC_SRT_NOT_STANDSTILL_OR_POWEROFF
+  SrtInvalidRampType = 851,          // SMC_SRT_INVALID_RAMPTYPE
+  SmtNotStandstillOrPoweroff = 852,  // SMC_SMT_NOT_STANDSTILL_OR_POWEROFF
+  SmtInvalidMovementTypeOrPositionPeriod = 853,  // SMC_SMT_INVALID_MOVEMENTTYPE_OR_POSITIONPERIOD
+  SmtAxisNotVirtual = 854,           // SMC_SMT_AXIS_NOT_VIRTUAL
   // Not in the SMC_ERROR table: a buffer mode the running command cannot hand over with.
   BlendingNotSupportedByPrevious = 0x7001,  // see docs/motion.md ("Buffer modes")
   BufferFull = 0x7002,                      // more buffered commands than the queue holds

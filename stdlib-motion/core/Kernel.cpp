@@ -78,7 +78,7 @@ bool validDirection(Direction d) { int v = static_cast<int>(d); return v >= -1 &
 // Bad inputs of a move, in the order the checks are made.
 Error validateMove(FbKind k, const MoveInputs& in, const Axis& ax) {
   const MoveCodes codes = codesOf(k);
-  const bool jerkOk = std::isfinite(in.jerk) && in.jerk >= 0 && (ax.config().ramp == RampType::Trapez || in.jerk > 0);
+  const bool jerkOk = std::isfinite(in.jerk) && in.jerk >= 0 && (ax.config().ramp == RampType::Trapez || ax.config().ramp == RampType::SinSquare || in.jerk > 0);
   const bool velOk = k == FbKind::MoveVelocity ? std::isfinite(in.velocity) : finitePositive(in.velocity);
   if (!velOk || !finitePositive(in.acceleration) || !finitePositive(in.deceleration) || !jerkOk) return codes.velAcc;
   if (!std::isfinite(in.position) || !std::isfinite(in.distance)) return codes.velAcc;

@@ -183,7 +183,7 @@ void callChangeOnTheFly(Kernel& k, FbSlot& fb, Axis& ax, bool execute, const Mov
   fb.axis = &ax;
   const Error velAcc = fb.kind == FbKind::MoveVelocity ? Error::MvInvalidAccDec : Error::MaInvalidVelAcc;
   if (!finitePositive(in.velocity) || !finitePositive(in.acceleration) || !finitePositive(in.deceleration) ||
-      !finiteNonNegative(in.jerk) || !finite(in.position) || (ax.config().ramp != RampType::Trapez && in.jerk == 0))
+      !finiteNonNegative(in.jerk) || !finite(in.position) || ((ax.config().ramp == RampType::Quadratic || ax.config().ramp == RampType::QuadraticSmooth) && in.jerk == 0))
     return k.fail(fb, velAcc, c);
   if (fb.kind == FbKind::MoveVelocity && in.direction != Direction::Positive && in.direction != Direction::Negative)
     return k.fail(fb, Error::MvDirectionNotApplicable, c);
