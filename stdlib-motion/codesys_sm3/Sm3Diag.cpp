@@ -52,7 +52,11 @@ void SMC_CheckLimits(sm3::SMC_CheckLimits* self) {
     const sm3::AXIS_REF_SM3* r = refOf(self->Axis);
     o = diag::checkLimits(*ax, true, self->bCheckVel, self->bCheckAccDec,
                           diag::SwMax{r->fSWMaxVelocity, r->fSWMaxAcceleration, r->fSWMaxDeceleration});
-    if (o.error) kernel().noteFbError(slotOf(self, FbKind::Diagnostic), o.errorId, c.nowNs);
+    if (o.error && !(self->bError && self->iErrorID == id(o.errorId))) {
+      FbSlot& s = slotOf(self, FbKind::Diagnostic);
+      s.axis = ax;
+      kernel().noteFbError(s, o.errorId, c.nowNs);
+    }
   }
   self->bBusy = o.busy;
   self->bError = o.error;
@@ -60,10 +64,10 @@ void SMC_CheckLimits(sm3::SMC_CheckLimits* self) {
   self->bLimitsExceeded = o.exceeded;
 }
 
-// Records an Enable FB's error on its axis (SMC_ReadFBError).
+// Records an Enable FB's error on its axis (SMC_ReadFBError) when it appears (not again in every call).
 template <class T>
 void note(T* self, Axis* ax, const diag::EnableOut& o, const CallCtx& c) {
-  if (!ax || !o.error) return;
+  if (!ax || !o.error || (self->bError && self->nErrorID == id(o.errorId))) return;
   FbSlot& s = slotOf(self, FbKind::Diagnostic);
   s.axis = ax;
   kernel().noteFbError(s, o.errorId, c.nowNs);
