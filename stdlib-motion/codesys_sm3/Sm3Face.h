@@ -126,6 +126,9 @@ void axisFb(T* self, F call) {
   mirrorAll(*ax);
 }
 
+// Per-family registration (called at the start of registerSm3Natives()).
+void registerSm3DiagNatives();
+
 // Registers `fn` as the native body of the ST FB `name` (checked against the generated signature).
 #define STC_SM3_NATIVE(name, ...)                                                        \
   static_assert(std::is_same_v<decltype(__VA_ARGS__), ::stc::native::sm3::name##_fn>);   \

@@ -28,7 +28,7 @@ void mirror(const Axis& ax, sm3::AXIS_REF_SM3& r) {
   r.bDriveStart = ax.driveStart();
   r.bError = ax.state() == AxisState::ErrorStop;
   r.nErrorID = static_cast<int16_t>(code(ax.error()));
-  r.bFBErrorOccured = ax.state() == AxisState::ErrorStop;
+  r.bFBErrorOccured = ax.state() == AxisState::ErrorStop || ax.fbError.set;
   const AxisConfig& c = ax.config();
   r.bSWLimitEnable = c.swLimitEnable;
   r.fSWLimitPositive = c.swLimitPositive;
@@ -188,6 +188,7 @@ namespace stc::motion {
 void registerSm3Natives() {
   registerLeadshineNatives();
   registerSm3ConfigNatives();
+  registerSm3DiagNatives();
   STC_SM3_NATIVE(MC_Power, MC_Power)
   STC_SM3_NATIVE(MC_Reset, MC_Reset)
   STC_SM3_NATIVE(MC_MoveAbsolute, moveBody<sm3::MC_MoveAbsolute, FbKind::MoveAbsolute>)

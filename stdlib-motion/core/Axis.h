@@ -55,6 +55,14 @@ struct AxisConfig {
 
 class FbSlot;
 
+// The last error an FB reported on an axis (SMC_ReadFBError; SMC_ClearFBError clears it).
+struct FbErrorRecord {
+  bool set = false;
+  Error id = Error::None;
+  const void* instance = nullptr;   // the ST instance of the FB
+  int64_t atNs = 0;                 // controller time of the error
+};
+
 // What one step of an axis found.
 struct StepResult {
   bool reached = false;              // the base movement reached the end of its profile
@@ -159,6 +167,7 @@ public:
   std::vector<FbSlot*> pendingClear;     // terminal outputs to clear after one cycle
   std::vector<FbSlot*> observers;        // FBs with a behaviour that watch every step (probes, cam switches ...)
   double lastCommandedTarget = 0;        // for MC_MoveAdditive (unwrapped)
+  FbErrorRecord fbError;                 // the latest FB error (Kernel::fail / finish with an error)
 
   // ---- the cycle: advances the set point to nowNs, runs the drive, supervises.
   StepResult step(int64_t nowNs, double dt);

@@ -57,6 +57,10 @@ enum class Error : uint16_t {
   MsiInvalidDirection = 277,         // SMC_MSI_INVALID_DIRECTION
   MvInvalidAccDec = 301,             // SMC_MV_INVALID_ACCDEC_VALUES
   MvDirectionNotApplicable = 302,    // SMC_MV_DIRECTION_NOT_APPLICABLE
+  TpTriggerOccupied = 400,           // SMC_TP_TRIGGEROCCUPIED
+  TpCouldntSetWindow = 401,          // SMC_TP_COULDNT_SET_WINDOW
+  TpCommError = 402,                 // SMC_TP_COMM_ERROR
+  AtTriggerNotOccupied = 410,        // SMC_AT_TRIGGERNOTOCCUPIED
   McrInvalidVelAcc = 426,            // SMC_MCR_INVALID_VELACC_VALUES
   McrInvalidDirection = 427,         // SMC_MCR_INVALID_DIRECTION
   McaInvalidVelAcc = 451,            // SMC_MCA_INVALID_VELACC_VALUES
@@ -64,11 +68,14 @@ enum class Error : uint16_t {
   McaDirectionNotApplicable = 453,   // SMC_MCA_DIRECTION_NOT_APPLICABLE
   SdlInvalidAxisState = 475,         // SMC_SDL_INVALID_AXIS_STATE
   SdlInvalidVelocityValues = 476,    // SMC_SDL_INVALID_VELOCITY_VALUES
+  CrNoTappetsInCam = 600,            // SMC_CR_NO_TAPPETS_IN_CAM
   SrtNotStandstillOrPoweroff = 850,  // SMC_SRT_NOT_STANDSTILL_OR_POWEROFF
   SrtInvalidRampType = 851,          // SMC_SRT_INVALID_RAMPTYPE
   SmtNotStandstillOrPoweroff = 852,  // SMC_SMT_NOT_STANDSTILL_OR_POWEROFF
   SmtInvalidMovementTypeOrPositionPeriod = 853,  // SMC_SMT_INVALID_MOVEMENTTYPE_OR_POSITIONPERIOD
   SmtAxisNotVirtual = 854,           // SMC_SMT_AXIS_NOT_VIRTUAL
+  AdlFileCannotBeOpened = 2100,      // SMC_ADL_FILE_CANNOT_BE_OPENED
+  AdlBufferOverrun = 2101,           // SMC_ADL_BUFFER_OVERRUN
   // Not in the SMC_ERROR table: a buffer mode the running command cannot hand over with.
   BlendingNotSupportedByPrevious = 0x7001,  // see docs/motion.md ("Buffer modes")
   BufferFull = 0x7002,                      // more buffered commands than the queue holds

@@ -17,6 +17,7 @@ Kernel& kernel() {
 void Kernel::reset() {
   axes_.clear();
   slots_.clear();
+  stepNowNs_ = 0;
   callCounter = 0;
   profile = VendorProfile{};
 }
@@ -136,6 +137,7 @@ void Kernel::finish(FbSlot& fb, const CallCtx* c, uint64_t cycle, bool done, boo
   fb.out.aborted = aborted;
   fb.out.error = e != Error::None;
   fb.out.errorId = e;
+  if (e != Error::None) noteFbError(fb, e, c ? c->nowNs : stepNowNs_);
   if (fb.axis) {
     Axis& ax = *fb.axis;
     if (ax.controller == &fb) ax.controller = nullptr;
@@ -156,8 +158,13 @@ void Kernel::fail(FbSlot& fb, Error e, const CallCtx& c) {
   fb.out.done = fb.out.aborted = false;
   fb.out.error = true;
   fb.out.errorId = e;
-  (void)c;
+  noteFbError(fb, e, c.nowNs);
   fb.sync();
+}
+
+void Kernel::noteFbError(FbSlot& fb, Error e, int64_t nowNs) {
+  if (!fb.axis || e == Error::None) return;
+  fb.axis->fbError = FbErrorRecord{true, e, fb.instance, nowNs};
 }
 
 // The axis refuses motion commands in these states (error per state).
@@ -592,6 +599,7 @@ void Kernel::callSetPosition(FbSlot& fb, Axis& ax, bool execute, double position
 
 void Kernel::cycle(uint32_t task, int64_t nowNs, int64_t intervalNs, uint64_t cycle) {
   const double dt = static_cast<double>(intervalNs) * 1e-9;
+  stepNowNs_ = nowNs;
   // Encoder-only axes are inputs: they are stepped first, so every axis that
   // follows one sees its value of this cycle, whatever the order of the axes.
   for (auto& a : axes_)

@@ -69,6 +69,9 @@ public:
   bool beginExecute(FbSlot& fb, bool execute, const CallCtx& c);   // true on a rising edge
   // Ends fb's command: Done / CommandAborted / Error e (held or one cycle, per the output rules).
   void finish(FbSlot& fb, const CallCtx* c, uint64_t cycle, bool done, bool aborted, Error e);
+  // Stores e as the axis's latest FB error (SMC_ReadFBError); fail() and finish() do it.
+  void noteFbError(FbSlot& fb, Error e, int64_t nowNs);
+  int64_t stepNowNs() const { return stepNowNs_; }   // time of the latest kernel step
   // Refuses a command: Error with e, nothing started.
   void fail(FbSlot& fb, Error e, const CallCtx& c);
   // The error a motion command gets in the axis's current state (None: may start).
@@ -89,6 +92,7 @@ private:
   // MC_Power reports an error when the drive is not enabled this long after the request.
   static constexpr int64_t kPowerTimeoutNs = 1'000'000'000;
 
+  int64_t stepNowNs_ = 0;
   std::vector<std::unique_ptr<Axis>> axes_;
   std::vector<std::unique_ptr<FbSlot>> slots_;
 };

@@ -32,6 +32,8 @@ struct Gen {
     if (!s->pou || !s->pou->decl) return false;
     for (const ast::Pragma& p : s->pou->decl->attributes)
       if (equalsIgnoreCase(p.name, "native")) return true;
+    // An ACTION of a native FB is native too (the compiler calls native.<FB>.<Action>(self)).
+    if (s->kind == sema::Symbol::Action && s->pou->owner && s->pou->owner != s) return isNative(s->pou->owner);
     return false;
   }
 
@@ -129,7 +131,7 @@ struct Gen {
         if (!suffix.empty() || rt->underlying()->isStructured() || rt->underlying()->isString()) params.push_back(ct + "* result");
         else ret = ct;
       }
-      if (pou->kind == sema::Symbol::Method) params.push_back(pou->pou->owner->name + "* self");
+      if (pou->kind == sema::Symbol::Method || pou->kind == sema::Symbol::Action) params.push_back(pou->pou->owner->name + "* self");
       for (const sema::Symbol* p : pou->pou->params) {
         ast::VarSection sec = p->var->section;
         params.push_back(paramType(p->type, sec != ast::VarSection::Input, true) + " " + p->name);
