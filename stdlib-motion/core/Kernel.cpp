@@ -173,6 +173,7 @@ Error Kernel::motionStateError(const Axis& ax) const {
     case AxisState::SynchronizedMotion: return vp.movesAbortSynchronized ? Error::None : Error::NotReadyForMotion;
     default: break;
   }
+  if (ax.drive().modeOfOperation() == 10) return Error::WrongControllerMode;   // torque control: no set-point motion
   if (!ax.ready()) return Error::RegulatorOrStartNotSet;
   return Error::None;
 }
@@ -592,8 +593,17 @@ void Kernel::callSetPosition(FbSlot& fb, Axis& ax, bool execute, double position
 
 void Kernel::cycle(uint32_t task, int64_t nowNs, int64_t intervalNs, uint64_t cycle) {
   const double dt = static_cast<double>(intervalNs) * 1e-9;
-  for (auto& a : axes_)
-    if (a->task == task) stepAxis(*a, nowNs, dt, cycle);
+  // Masters first (Axis::master), whatever order the axes were added in; a master of another
+  // task is stepped by that task.
+  stepped_.assign(axes_.size(), 0);
+  for (auto& a : axes_) {
+    chain_.clear();
+    for (Axis* x = a.get(); x && x->task == task && !stepped_[x->index()]; x = x->master) {
+      stepped_[x->index()] = 1;
+      chain_.push_back(x);
+    }
+    for (size_t i = chain_.size(); i-- > 0;) stepAxis(*chain_[i], nowNs, dt, cycle);
+  }
 }
 
 void Kernel::errorStop(Axis& ax, Error e, int64_t nowNs, uint64_t cycle) {
