@@ -477,6 +477,7 @@ void Kernel::callStop(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, 
   if (ax.blockingStop && ax.blockingStop != &fb) return fail(fb, Error::BlockingStopWasntCalled, c);
   if (!finitePositive(in.deceleration) || !std::isfinite(in.jerk) || in.jerk < 0) return fail(fb, Error::StopInvalidAccDec, c);
   if (ax.state() == AxisState::PowerOff) return fail(fb, Error::RegulatorOrStartNotSet, c);
+  if (ax.drive().modeOfOperation() == 10) return fail(fb, Error::WrongControllerMode, c);   // torque control
   fb.in = in;
   fb.in.velocity = std::max(std::fabs(ax.set().v), 1e-9);
   fb.in.acceleration = in.deceleration;

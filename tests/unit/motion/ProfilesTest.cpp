@@ -517,6 +517,11 @@ TEST(MotionTorque, SetControllerModeAndSetTorqueAccelerateTheInertia) {
   FbSlot& m = s.slot(FbKind::MoveAbsolute);
   s.k.callMove(m, *s.ax, true, absMove(1, 1, 1), s.ctx());
   EXPECT_EQ(m.out.errorId, Error::WrongControllerMode);
+  FbSlot& stop = s.slot(FbKind::Stop);
+  MoveInputs dec;
+  dec.deceleration = 10;
+  s.k.callStop(stop, *s.ax, true, dec, s.ctx());
+  EXPECT_EQ(stop.out.errorId, Error::WrongControllerMode);
   // Torque 2 on inertia 0.5: a = 4, v = 4 t, p = 2 t^2 (exact: constant acceleration).
   for (int k = 1; k <= 1000; ++k) {
     s.k.callPower(p, *s.ax, true, true, true, s.ctx());
