@@ -135,3 +135,8 @@ void registerSm3DiagNatives();
   ::stc::vm::nativeRegistry().add({::stc::native::sm3::name##_name, reinterpret_cast<const void*>(&__VA_ARGS__), ::stc::native::sm3::name##_hash});
 
 }  // namespace stc::motion::sm3face
+
+namespace stc::motion {
+// Per-family registration, called at the start of registerSm3Natives().
+void registerSm3ProfilesNatives();
+}  // namespace stc::motion

@@ -230,6 +230,13 @@ StepResult Axis::step(int64_t nowNs, double dt) {
   drive_.cycle(set_.p, set_.v, set_.a, dt, nowNs);
   if (cfg_.drive.kind == AxisKind::Servo) updateControlword();   // answered in the next cycle
   resetPulse_ = false;
+  if (drive_.modeOfOperation() == 10) {
+    // Cyclic synchronous torque: the motor follows the set torque and the set point follows the motor.
+    const double a = cfg_.drive.inertia > 0 && drive_.operationEnabled() ? drive_.actTorque() / cfg_.drive.inertia : 0.0;
+    holdAt(drive_.actPosition());
+    set_.v = drive_.actVelocity();
+    set_.a = a;
+  }
 
   // ---- supervision (the first error wins; ErrorStop reports no further ones)
   if (state_ == AxisState::ErrorStop) return r;
@@ -256,6 +263,7 @@ StepResult Axis::step(int64_t nowNs, double dt) {
 void Axis::enterErrorStop(Error e, int64_t nowNs) {
   state_ = AxisState::ErrorStop;
   error_ = e;
+  drive_.setTargetTorque(0);     // torque control: the set torque drops, the load coasts
   sup_.kind = Movement::Kind::None;
   if (!drive_.operationEnabled()) {
     // The power stage is off (drive fault, lost enable): the motor stands where it is.

@@ -168,6 +168,9 @@ public:
   std::vector<FbSlot*> observers;        // FBs with a behaviour that watch every step (probes, cam switches ...)
   double lastCommandedTarget = 0;        // for MC_MoveAdditive (unwrapped)
   FbErrorRecord fbError;                 // the latest FB error (Kernel::fail / finish with an error)
+  // Coupling master (cam, gear ...): the kernel steps this axis after its master in every
+  // cycle of their task, so the coupling reads the master's set state of the same cycle.
+  Axis* master = nullptr;
 
   // ---- the cycle: advances the set point to nowNs, runs the drive, supervises.
   StepResult step(int64_t nowNs, double dt);

@@ -94,6 +94,7 @@ bool Drive::readObject(uint16_t index, uint8_t sub, int64_t& value) const {
     case 0x6064: value = std::llround(actPos_ * inc); return sub == 0;
     case 0x606C: value = std::llround(actVel_ * inc); return sub == 0;
     case 0x6077: value = std::llround(actTorque_ * 10.0); return sub == 0;
+    case 0x6071: value = std::llround(targetTorque_ * 10.0); return sub == 0;
     case 0x60FD: {
       // CiA402 digital inputs: bit 0 negative limit, bit 1 positive limit, bit 2 home switch.
       value = (limitNegativeActive() ? 1 : 0) | (limitPositiveActive() ? 2 : 0) | (homeSwitchActive() ? 4 : 0);
@@ -116,6 +117,7 @@ bool Drive::writeObject(uint16_t index, uint8_t sub, int64_t value) {
       o.value = value;
       if (index == 0x6040) controlword_ = static_cast<uint16_t>(value);
       if (index == 0x6060) modesOfOperation_ = static_cast<int8_t>(value);
+      if (index == 0x6071) targetTorque_ = static_cast<double>(value) / 10.0;
       return true;
     }
   return false;
@@ -203,9 +205,21 @@ void Drive::cycle(double setPos, double setVel, double setAcc, double dt, int64_
     lagSetVel_ = 0;
     return;
   }
+  if (modesOfOperation_ == 10) {   // CST: the load accelerates with torque / inertia
+    actTorque_ = targetTorque_;
+    const double v0 = cfg_.inertia > 0 ? actVel_ : 0.0;
+    actVel_ = cfg_.inertia > 0 ? v0 + actTorque_ / cfg_.inertia * dt : 0.0;
+    actPos_ += 0.5 * (v0 + actVel_) * dt;
+    return;
+  }
+  const bool csv = modesOfOperation_ == 9;   // CSV: no position loop, the motor follows the set velocity
   switch (cfg_.model) {
     case DriveModel::Ideal:
-      if (cfg_.kind == AxisKind::Pulse && cfg_.incrementsPerUnit > 0) {
+      if (csv) {
+        const double v0 = actVel_;
+        actVel_ = setVel;
+        actPos_ += 0.5 * (v0 + actVel_) * dt;
+      } else if (cfg_.kind == AxisKind::Pulse && cfg_.incrementsPerUnit > 0) {
         actPos_ = std::nearbyint(setPos * cfg_.incrementsPerUnit) / cfg_.incrementsPerUnit;
         actVel_ = dt > 0 ? (actPos_ - prevPos_) / dt : setVel;
       } else {
@@ -220,7 +234,9 @@ void Drive::cycle(double setPos, double setVel, double setAcc, double dt, int64_
       // of the cycle).  Holding this cycle's command for the whole cycle would
       // make the motor lead the set point by about one cycle.
       const double e0 = lagSetPos_ - actPos_;
-      const double u0 = lagSetVel_ + cfg_.kv * e0, u1 = setVel + cfg_.kv * e0;
+      // CSV (velocity mode): no position loop.
+      const double loop = csv ? 0.0 : cfg_.kv * e0;
+      const double u0 = lagSetVel_ + loop, u1 = setVel + loop;
       const double tau = cfg_.lagTime;
       if (tau <= 0 || dt <= 0) {
         actPos_ += 0.5 * (u0 + u1) * dt;

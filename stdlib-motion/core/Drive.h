@@ -93,6 +93,12 @@ public:
   double actTorque() const { return actTorque_; }
   void shift(double delta) { actPos_ += delta; prevPos_ += delta; lagSetPos_ += delta; }
   void place(double pos) { actPos_ = prevPos_ = lagSetPos_ = pos; actVel_ = lagSetVel_ = 0; }
+  // Cyclic modes (6060h): 8 CSP (position loop), 9 CSV (the motor follows the set velocity),
+  // 10 CST (the motor follows the target torque 6071h: acceleration = torque / inertia;
+  // without an inertia the load cannot be simulated and stands).
+  int8_t modeOfOperation() const { return modesOfOperation_; }
+  void setTargetTorque(double t) { targetTorque_ = t; }
+  double targetTorque() const { return targetTorque_; }
 
   // ---- sensors (levels at the current actual position)
   bool limitPositiveActive() const;
@@ -111,7 +117,7 @@ private:
   uint16_t errorCode_ = 0;
   bool communication_ = true;
   bool forcedLimitPos_ = false, forcedLimitNeg_ = false;
-  double actPos_ = 0, actVel_ = 0, actTorque_ = 0, prevPos_ = 0;
+  double actPos_ = 0, actVel_ = 0, actTorque_ = 0, prevPos_ = 0, targetTorque_ = 0;
   double lagSetPos_ = 0, lagSetVel_ = 0;   // the set point of the previous cycle (Lag model)
   int8_t modesOfOperation_ = 8;      // 0x6060: cyclic synchronous position
   struct Object { uint16_t index; uint8_t sub; bool writable; int64_t value; };

@@ -26,6 +26,10 @@ enum class Error : uint16_t {
   VdMaxDecelerationExceeded = 42,    // SMC_VD_MAX_DECELERATION_EXCEEDED
   HomingInvalidVelAcc = 50,          // SMC_3SH_INVALID_VELACC_VALUES
   HomingModeNeedsHwLimit = 51,       // SMC_3SH_MODE_NEEDS_HWLIMIT
+  ScmNotSupported = 70,              // SMC_SCM_NOT_SUPPORTED
+  ScmAxisInWrongState = 71,          // SMC_SCM_AXIS_IN_WRONG_STATE
+  ScmInterrupted = 72,               // SMC_SCM_INTERRUPTED
+  StWrongControllerMode = 75,        // SMC_ST_WRONG_CONTROLLER_MODE
   CgrZeroValues = 90,                // SMC_CGR_ZERO_VALUES
   CgrDrivePowered = 91,              // SMC_CGR_DRIVE_POWERED
   CgrInvalidPosPeriod = 92,          // SMC_CGR_INVALID_POSPERIOD
@@ -57,6 +61,12 @@ enum class Error : uint16_t {
   MsiInvalidDirection = 277,         // SMC_MSI_INVALID_DIRECTION
   MvInvalidAccDec = 301,             // SMC_MV_INVALID_ACCDEC_VALUES
   MvDirectionNotApplicable = 302,    // SMC_MV_DIRECTION_NOT_APPLICABLE
+  PpArraySize = 325,                 // SMC_PP_ARRAYSIZE
+  PpStep0ms = 326,                   // SMC_PP_STEP0MS
+  VpArraySize = 350,                 // SMC_VP_ARRAYSIZE
+  VpStep0ms = 351,                   // SMC_VP_STEP0MS
+  ApArraySize = 375,                 // SMC_AP_ARRAYSIZE
+  ApStep0ms = 376,                   // SMC_AP_STEP0MS
   TpTriggerOccupied = 400,           // SMC_TP_TRIGGEROCCUPIED
   TpCouldntSetWindow = 401,          // SMC_TP_COULDNT_SET_WINDOW
   TpCommError = 402,                 // SMC_TP_COMM_ERROR

@@ -180,6 +180,7 @@ Error Kernel::motionStateError(const Axis& ax) const {
     case AxisState::SynchronizedMotion: return vp.movesAbortSynchronized ? Error::None : Error::NotReadyForMotion;
     default: break;
   }
+  if (ax.drive().modeOfOperation() == 10) return Error::WrongControllerMode;   // torque control: no set-point motion
   if (!ax.ready()) return Error::RegulatorOrStartNotSet;
   return Error::None;
 }
@@ -483,6 +484,7 @@ void Kernel::callStop(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, 
   if (ax.blockingStop && ax.blockingStop != &fb) return fail(fb, Error::BlockingStopWasntCalled, c);
   if (!finitePositive(in.deceleration) || !std::isfinite(in.jerk) || in.jerk < 0) return fail(fb, Error::StopInvalidAccDec, c);
   if (ax.state() == AxisState::PowerOff) return fail(fb, Error::RegulatorOrStartNotSet, c);
+  if (ax.drive().modeOfOperation() == 10) return fail(fb, Error::WrongControllerMode, c);   // torque control
   fb.in = in;
   fb.in.velocity = std::max(std::fabs(ax.set().v), 1e-9);
   fb.in.acceleration = in.deceleration;
@@ -602,10 +604,22 @@ void Kernel::cycle(uint32_t task, int64_t nowNs, int64_t intervalNs, uint64_t cy
   stepNowNs_ = nowNs;
   // Encoder-only axes are inputs: they are stepped first, so every axis that
   // follows one sees its value of this cycle, whatever the order of the axes.
+  stepped_.assign(axes_.size(), 0);
   for (auto& a : axes_)
-    if (a->task == task && a->config().drive.kind == AxisKind::Encoder) stepAxis(*a, nowNs, dt, cycle);
-  for (auto& a : axes_)
-    if (a->task == task && a->config().drive.kind != AxisKind::Encoder) stepAxis(*a, nowNs, dt, cycle);
+    if (a->task == task && a->config().drive.kind == AxisKind::Encoder) {
+      stepped_[a->index()] = 1;
+      stepAxis(*a, nowNs, dt, cycle);
+    }
+  // Then masters before their slaves (Axis::master), whatever order the axes were added in;
+  // a master of another task is stepped by that task.
+  for (auto& a : axes_) {
+    chain_.clear();
+    for (Axis* x = a.get(); x && x->task == task && !stepped_[x->index()]; x = x->master) {
+      stepped_[x->index()] = 1;
+      chain_.push_back(x);
+    }
+    for (size_t i = chain_.size(); i-- > 0;) stepAxis(*chain_[i], nowNs, dt, cycle);
+  }
 }
 
 void Kernel::errorStop(Axis& ax, Error e, int64_t nowNs, uint64_t cycle) {

@@ -95,6 +95,8 @@ private:
   int64_t stepNowNs_ = 0;
   std::vector<std::unique_ptr<Axis>> axes_;
   std::vector<std::unique_ptr<FbSlot>> slots_;
+  std::vector<uint8_t> stepped_;   // cycle(): axes already stepped
+  std::vector<Axis*> chain_;       // cycle(): an axis and its not yet stepped masters
 };
 
 Kernel& kernel();
