@@ -186,6 +186,7 @@ void MC_ReadAxisError(sm3::MC_ReadAxisError* self) {
 namespace stc::motion {
 
 void registerSm3Natives() {
+  registerSm3HomingNatives();
   STC_SM3_NATIVE(MC_Power, MC_Power)
   STC_SM3_NATIVE(MC_Reset, MC_Reset)
   STC_SM3_NATIVE(MC_MoveAbsolute, moveBody<sm3::MC_MoveAbsolute, FbKind::MoveAbsolute>)
