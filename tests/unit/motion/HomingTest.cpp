@@ -466,3 +466,540 @@ TEST(Homing, LsHomeMoveReleasedIsAborted) {
   callDriveHomeMove(s.k, h, *s.ax, true, hp, s.ctx());
   EXPECT_EQ(h.out.errorId, Error::HomeAxisDidntAnswer);
 }
+
+// ================================================================ SMC_Homing (controller side)
+
+namespace {
+
+SmcHomingInputs smcHoming(int mode, int direction = -1) {
+  SmcHomingInputs in;
+  in.velocityFast = 10;
+  in.velocitySlow = 1;
+  in.acceleration = in.deceleration = 100;
+  in.direction = direction;
+  in.mode = mode;
+  return in;
+}
+
+// The program: bReferenceSwitch from the axis's actual position as the program sees it (the
+// value after the previous cycle), the switch closed on [lo, hi]; calls SMC_Homing once per cycle.
+struct HomingProgram {
+  Sim& s;
+  FbSlot& fb;
+  SmcHomingInputs in;
+  double lo = -1e9, hi = -4.0005;
+  uint64_t doneCycle = 0;
+  void cycle(bool execute = true) {
+    const double x = s.ax->actPosition();
+    in.referenceSwitch = !(x >= lo && x <= hi);
+    callSmcHoming(s.k, fb, *s.ax, execute, in, s.ctx());
+    const uint64_t c = s.cycle;
+    s.endCycle();
+    if (fb.out.done && !doneCycle) doneCycle = c;
+  }
+};
+
+}  // namespace
+
+// FAST_BSLOW_S_STOP, negative, switch closed below -4.0005: fast phase p(t) = -50 t^2, then
+// -0.5 - 10 (t - 0.1): closed in the step of c0 + 451 (p = -4.01), seen by the program in c0 + 452,
+// whose step starts the slow reverse from p = -4.02, v = -10 (v = -9.9 one step later); minimum
+// -4.52, +1 u/s from -4.515: open in the step of tau = 0.625 (c0 + 1077, p = -4.0), seen in c0 + 1078:
+// that position (-4.0) becomes fHomePosition (0) at once: set point -3.999 -> 0.001; stop
+// (0.01 s, 0.005 u): Done in the step of c0 + 1088 at 0.006.
+TEST(Homing, SmcHomingFastBslowSStopCycleByCycle) {
+  Sim s;
+  FbSlot& p = s.slot(FbKind::Power);
+  FbSlot& h = s.slot(FbKind::Home);
+  s.powerOn(p);
+  HomingProgram prog{s, h, smcHoming(0)};
+  const uint64_t c0 = s.cycle;
+  const double xStart = s.ax->actPosition();
+  prog.in.referenceSwitch = !(xStart <= -4.0005);
+  callSmcHoming(s.k, h, *s.ax, true, prog.in, s.ctx());
+  EXPECT_TRUE(h.out.busy);
+  EXPECT_EQ(s.ax->state(), AxisState::Homing);
+  s.endCycle();
+  for (int i = 0; i < 1200 && !prog.doneCycle; ++i) {
+    const uint64_t c = s.cycle;
+    prog.cycle();
+    const double t = (c - c0) * 1e-3;
+    if (c <= c0 + 451) {
+      ASSERT_NEAR(s.ax->set().p, t <= 0.1 ? -50 * t * t : -0.5 - 10 * (t - 0.1), 1e-9) << c;
+      ASSERT_EQ(s.ax->state(), AxisState::Homing);
+    }
+    if (c == c0 + 452) {
+      EXPECT_NEAR(s.ax->set().p, -4.02, 1e-9);
+      EXPECT_NEAR(s.ax->set().v, -10, 1e-9);
+    }
+    if (c == c0 + 453) { EXPECT_NEAR(s.ax->set().v, -9.9, 1e-9); }
+    if (c == c0 + 552) { EXPECT_NEAR(s.ax->set().p, -4.52, 1e-9); }
+    if (c == c0 + 1077) { EXPECT_NEAR(s.ax->set().p, -4.0, 1e-9); }
+    if (c == c0 + 1078) { EXPECT_NEAR(s.ax->set().p, 0.001, 1e-9); }
+    if (c < c0 + 1088) { ASSERT_TRUE(h.out.busy) << c; }
+  }
+  EXPECT_EQ(prog.doneCycle, c0 + 1088);
+  EXPECT_FALSE(h.out.busy);
+  EXPECT_EQ(s.ax->state(), AxisState::Standstill);
+  EXPECT_NEAR(s.ax->set().p, 0.006, 1e-9);
+  EXPECT_NEAR(s.ax->actPosition(), 0.006, 1e-9);
+}
+
+// FAST_BSLOW_STOP_S: the same motion; the position is set when the axis has stopped.
+TEST(Homing, SmcHomingStopThenSet) {
+  Sim s;
+  FbSlot& p = s.slot(FbKind::Power);
+  FbSlot& h = s.slot(FbKind::Home);
+  s.powerOn(p);
+  HomingProgram prog{s, h, smcHoming(1)};
+  prog.in.homePosition = 100;
+  const uint64_t c0 = s.cycle;
+  for (int i = 0; i < 1200 && !prog.doneCycle; ++i) {
+    const uint64_t c = s.cycle;
+    prog.cycle();
+    if (c == c0 + 1078) { EXPECT_NEAR(s.ax->set().p, -3.999, 1e-9); }
+    if (c == c0 + 1087) { EXPECT_NEAR(s.ax->set().p, -3.99405, 1e-9); }
+  }
+  EXPECT_EQ(prog.doneCycle, c0 + 1088);
+  EXPECT_NEAR(s.ax->set().p, 100.006, 1e-9);
+}
+
+// bReturnToZero: after the stop the axis moves to 0 (0.006 u at fVelocityFast and 100 u/s^2: a
+// 15.5 ms triangle, peak 0.775 u/s);
+// fSignalDelay = 2 ms moves the reference 0.002 u back along the slow direction.
+TEST(Homing, SmcHomingReturnToZeroAndSignalDelay) {
+  {
+    Sim s;
+    FbSlot& p = s.slot(FbKind::Power);
+    FbSlot& h = s.slot(FbKind::Home);
+    s.powerOn(p);
+    HomingProgram prog{s, h, smcHoming(0)};
+    prog.in.returnToZero = true;
+    const uint64_t c0 = s.cycle;
+    for (int i = 0; i < 1200 && !prog.doneCycle; ++i) {
+      const uint64_t c = s.cycle;
+      prog.cycle();
+      if (c == c0 + 1088) { EXPECT_NEAR(s.ax->set().p, 0.006, 1e-9); }
+    }
+    EXPECT_EQ(prog.doneCycle, c0 + 1104);
+    EXPECT_EQ(s.ax->set().p, 0.0);
+    EXPECT_EQ(s.ax->state(), AxisState::Standstill);
+  }
+  {
+    Sim s;
+    FbSlot& p = s.slot(FbKind::Power);
+    FbSlot& h = s.slot(FbKind::Home);
+    s.powerOn(p);
+    HomingProgram prog{s, h, smcHoming(0)};
+    prog.in.signalDelay = 0.002;
+    for (int i = 0; i < 1200 && !prog.doneCycle; ++i) prog.cycle();
+    EXPECT_NEAR(s.ax->set().p, 0.008, 1e-9);
+  }
+}
+
+// FAST_BSLOW_I_S_STOP: bStartLatchingIndex once the switch is left; the application reports the
+// index at -3.9 in cycle c0 + 1200 (the axis is at -3.877 then): -3.9 becomes 0, stop from 0.023.
+TEST(Homing, SmcHomingIndexHandshake) {
+  Sim s;
+  FbSlot& p = s.slot(FbKind::Power);
+  FbSlot& h = s.slot(FbKind::Home);
+  s.powerOn(p);
+  HomingProgram prog{s, h, smcHoming(2)};
+  const uint64_t c0 = s.cycle;
+  for (int i = 0; i < 1300 && !prog.doneCycle; ++i) {
+    const uint64_t c = s.cycle;
+    prog.in.indexOccured = c >= c0 + 1200;
+    prog.in.indexPosition = -3.9;
+    prog.cycle();
+    if (c < c0 + 1078) { ASSERT_FALSE(smcHomingLatching(h)) << c; }
+    if (c >= c0 + 1078 && c < c0 + 1200) { ASSERT_TRUE(smcHomingLatching(h)) << c; }
+    if (c == c0 + 1199) { EXPECT_NEAR(s.ax->set().p, -3.878, 1e-9); }
+    if (c >= c0 + 1200) { ASSERT_FALSE(smcHomingLatching(h)); }
+    if (c == c0 + 1200) { EXPECT_NEAR(s.ax->set().p, 0.023, 1e-9); }
+  }
+  EXPECT_EQ(prog.doneCycle, c0 + 1210);
+  EXPECT_NEAR(s.ax->set().p, 0.028, 1e-9);
+}
+
+// FAST_SLOW_S_STOP: the slow phase goes on in nDirection (brake -10 -> -1 in 0.09 s) until the switch
+// [-6, -4.0005] is left below -6: step of c0 + 452 + 1576 (p = -6.001), seen one cycle later.
+// These modes need a hardware limit switch in nDirection (51 without it or with bIgnoreHWLimit).
+TEST(Homing, SmcHomingSameDirectionNeedsALimitSwitch) {
+  AxisConfig cfg;
+  cfg.drive.hasLimitNegative = true;
+  cfg.drive.limitNegative = -20;
+  Sim s(cfg);
+  FbSlot& p = s.slot(FbKind::Power);
+  FbSlot& h = s.slot(FbKind::Home);
+  s.powerOn(p);
+  HomingProgram prog{s, h, smcHoming(4)};
+  prog.lo = -6;
+  const uint64_t c0 = s.cycle;
+  for (int i = 0; i < 2200 && !prog.doneCycle; ++i) {
+    const uint64_t c = s.cycle;
+    prog.cycle();
+    if (c == c0 + 2028) { EXPECT_NEAR(s.ax->set().p, -6.001, 1e-9); }
+    if (c == c0 + 2029) { EXPECT_NEAR(s.ax->set().p, -0.001, 1e-9); }
+  }
+  EXPECT_EQ(prog.doneCycle, c0 + 2039);
+  EXPECT_NEAR(s.ax->set().p, -0.006, 1e-9);
+
+  Sim s2;   // no limit switch
+  FbSlot& p2 = s2.slot(FbKind::Power);
+  FbSlot& h2 = s2.slot(FbKind::Home);
+  s2.powerOn(p2);
+  for (int mode : {4, 5, 6}) {
+    callSmcHoming(s2.k, h2, *s2.ax, false, smcHoming(mode), s2.ctx());
+    callSmcHoming(s2.k, h2, *s2.ax, true, smcHoming(mode), s2.ctx());
+    EXPECT_EQ(h2.out.errorId, Error::HomingModeNeedsHwLimit) << mode;
+  }
+  Sim s3(cfg);
+  FbSlot& p3 = s3.slot(FbKind::Power);
+  FbSlot& h3 = s3.slot(FbKind::Home);
+  s3.powerOn(p3);
+  SmcHomingInputs ign = smcHoming(4);
+  ign.ignoreHwLimit = true;
+  callSmcHoming(s3.k, h3, *s3.ax, true, ign, s3.ctx());
+  EXPECT_EQ(h3.out.errorId, Error::HomingModeNeedsHwLimit);
+}
+
+TEST(Homing, SmcHomingInputErrors) {
+  Sim s;
+  FbSlot& p = s.slot(FbKind::Power);
+  FbSlot& h = s.slot(FbKind::Home);
+  // Power off: 20.
+  callSmcHoming(s.k, h, *s.ax, true, smcHoming(0), s.ctx());
+  EXPECT_EQ(h.out.errorId, Error::RegulatorOrStartNotSet);
+  s.powerOn(p);
+  const double nan = std::nan("");
+  std::vector<SmcHomingInputs> bad;
+  for (double v : {0.0, -1.0, nan}) {
+    SmcHomingInputs a = smcHoming(0);
+    a.velocityFast = v;
+    bad.push_back(a);
+    a = smcHoming(0);
+    a.velocitySlow = v;
+    bad.push_back(a);
+    a = smcHoming(0);
+    a.acceleration = v;
+    bad.push_back(a);
+    a = smcHoming(0);
+    a.deceleration = v;
+    bad.push_back(a);
+  }
+  SmcHomingInputs a = smcHoming(3);   // no mode 3
+  bad.push_back(a);
+  a = smcHoming(0, 0);                // direction shortest
+  bad.push_back(a);
+  a = smcHoming(0);
+  a.signalDelay = -0.001;
+  bad.push_back(a);
+  a = smcHoming(0);
+  a.homePosition = nan;
+  bad.push_back(a);
+  for (const SmcHomingInputs& b : bad) {
+    s.endCycle();
+    callSmcHoming(s.k, h, *s.ax, false, b, s.ctx());
+    callSmcHoming(s.k, h, *s.ax, true, b, s.ctx());
+    EXPECT_TRUE(h.out.error);
+    EXPECT_FALSE(h.out.busy);
+    EXPECT_EQ(h.out.errorId, Error::HomingInvalidVelAcc);
+    EXPECT_EQ(s.ax->state(), AxisState::Standstill);
+  }
+  // Not in standstill: 34.
+  FbSlot& m = s.slot(FbKind::MoveVelocity);
+  MoveInputs in;
+  in.velocity = 1;
+  in.acceleration = in.deceleration = 10;
+  s.k.callMove(m, *s.ax, true, in, s.ctx());
+  callSmcHoming(s.k, h, *s.ax, false, smcHoming(0), s.ctx());
+  callSmcHoming(s.k, h, *s.ax, true, smcHoming(0), s.ctx());
+  EXPECT_EQ(h.out.errorId, Error::NotReadyForMotion);
+  EXPECT_TRUE(m.out.busy);
+}
+
+// A hardware limit switch met during the search: error 11, errorstop; bIgnoreHWLimit passes it.
+TEST(Homing, SmcHomingHardwareLimit) {
+  for (bool ignore : {false, true}) {
+    AxisConfig cfg;
+    cfg.drive.hasLimitNegative = true;
+    cfg.drive.limitNegative = -3.0005;   // closed in the step of c0 + 351 (p = -3.01)
+    Sim s(cfg);
+    FbSlot& p = s.slot(FbKind::Power);
+    FbSlot& h = s.slot(FbKind::Home);
+    s.powerOn(p);
+    HomingProgram prog{s, h, smcHoming(0)};
+    prog.in.ignoreHwLimit = ignore;
+    const uint64_t c0 = s.cycle;
+    uint64_t errorCycle = 0;
+    for (int i = 0; i < 1200 && !prog.doneCycle && !errorCycle; ++i) {
+      const uint64_t c = s.cycle;
+      prog.cycle();
+      if (h.out.error) errorCycle = c;
+    }
+    if (!ignore) {
+      EXPECT_EQ(errorCycle, c0 + 352);
+      EXPECT_EQ(h.out.errorId, Error::HwLimitsExceeded);
+      EXPECT_EQ(s.ax->state(), AxisState::ErrorStop);
+    } else {
+      EXPECT_EQ(prog.doneCycle, c0 + 1088);
+      EXPECT_NEAR(s.ax->set().p, 0.006, 1e-9);
+    }
+  }
+}
+
+TEST(Homing, SmcHomingAbortedByStop) {
+  Sim s;
+  FbSlot& p = s.slot(FbKind::Power);
+  FbSlot& h = s.slot(FbKind::Home);
+  FbSlot& st = s.slot(FbKind::Stop);
+  s.powerOn(p);
+  HomingProgram prog{s, h, smcHoming(0)};
+  for (int i = 0; i < 300; ++i) prog.cycle();
+  MoveInputs in;
+  in.deceleration = 50;
+  const double x = s.ax->actPosition();
+  prog.in.referenceSwitch = !(x <= -4.0005);
+  callSmcHoming(s.k, h, *s.ax, true, prog.in, s.ctx());
+  s.k.callStop(st, *s.ax, true, in, s.ctx());
+  EXPECT_TRUE(h.out.aborted);
+  EXPECT_FALSE(h.out.busy);
+  EXPECT_EQ(s.ax->state(), AxisState::Stopping);
+  for (int i = 0; i < 250; ++i) {
+    s.k.callStop(st, *s.ax, true, in, s.ctx());
+    s.endCycle();
+  }
+  EXPECT_TRUE(st.out.done);
+  // From t = 0.3 (p = -2.5, v = -10) at 50 u/s^2: 1 u further.
+  EXPECT_NEAR(s.ax->set().p, -3.5, 1e-9);
+}
+
+// ================================================================ SMC_Home (Leadshine, the axis's own switches)
+
+namespace {
+
+AxisConfig pulseHomeAxis() {
+  AxisConfig cfg = homingAxis();
+  cfg.drive.homeSwitchLow = 5.3051;
+  cfg.drive.indexOffset = 0.2504;
+  return cfg;
+}
+
+SmcHomeInputs smcHome(int mode, int direction = 1) {
+  SmcHomeInputs in;
+  in.velocityFast = 10;
+  in.velocitySlow = 1;
+  in.acceleration = in.deceleration = 100;
+  in.direction = direction;
+  in.mode = mode;
+  in.completeMode = 1;
+  in.driverCounter = 0;
+  return in;
+}
+
+uint64_t runSmcHome(Sim& s, FbSlot& h, const SmcHomeInputs& in, uint64_t limit = 5000) {
+  for (uint64_t i = 0; i < limit; ++i) {
+    callSmcHome(s.k, h, *s.ax, true, in, s.ctx());
+    const uint64_t c = s.cycle;
+    s.endCycle();
+    if (h.out.done || h.out.error) return c;
+  }
+  return 0;
+}
+
+}  // namespace
+
+// imode 0 (single search): fast +10 to the switch at 5.3051: closed in the step of c0 + 581
+// (p = 5.31), seen in c0 + 582 (reference: 5.31, the position the controller read); stop from
+// 5.32 (0.1 s, to 5.82), back to 5.31 at 1 u/s (0.52 s): Done in the step of c0 + 1202 and,
+// with bHomeCompleteMode 1, that point is 0.  imode 6 latches the edge itself (5.3051).
+TEST(Homing, SmcHomeSingleSearchAndLatch) {
+  for (int mode : {0, 6}) {
+    Sim s(pulseHomeAxis());
+    FbSlot& p = s.slot(FbKind::Power);
+    FbSlot& h = s.slot(FbKind::Home);
+    s.powerOn(p);
+    const uint64_t c0 = s.cycle;
+    callSmcHome(s.k, h, *s.ax, true, smcHome(mode), s.ctx());
+    EXPECT_TRUE(h.out.busy);
+    EXPECT_EQ(s.ax->state(), AxisState::Homing);
+    s.endCycle();
+    uint64_t done = 0;
+    for (int i = 0; i < 2000 && !done; ++i) {
+      callSmcHome(s.k, h, *s.ax, true, smcHome(mode), s.ctx());
+      const uint64_t c = s.cycle;
+      s.endCycle();
+      if (c == c0 + 581) { EXPECT_NEAR(s.ax->set().p, 5.31, 1e-9); }
+      if (c == c0 + 582) { EXPECT_NEAR(s.ax->set().v, 10, 1e-9); }
+      if (c == c0 + 583) { EXPECT_NEAR(s.ax->set().v, 9.9, 1e-9); }
+      if (c == c0 + 682) { EXPECT_NEAR(s.ax->set().p, 5.82, 1e-9); }
+      if (h.out.done) done = c;
+      else ASSERT_TRUE(h.out.busy);
+    }
+    EXPECT_EQ(done, mode == 0 ? c0 + 1202 : c0 + 1207) << mode;
+    EXPECT_EQ(s.ax->set().p, 0.0);
+    EXPECT_NEAR(mechanical(*s.ax), mode == 0 ? 5.31 : 5.3051, 1e-9);
+    EXPECT_EQ(s.ax->state(), AxisState::Standstill);
+  }
+}
+
+TEST(Homing, SmcHomeModesFinalPositions) {
+  struct Case { int mode; int dir; double mech; };
+  // 1: back off at 1 u/s until the switch opens (read at 5.305); 2 / 10: second approach at 1 u/s
+  // (10 latched: 5.3051); 7: index after the switch, same direction (6.2504); 8: index only (0.2504);
+  // 9: index after the switch, reverse (4.2504); negative direction 6: the upper edge 8.7 ... from 0
+  // moving down: reversal at the negative limit first.
+  const Case cases[] = {{1, 1, 5.305}, {2, 1, 5.306}, {10, 1, 5.3051}, {7, 1, 6.2504}, {8, 1, 0.2504}, {9, 1, 4.2504},
+                        {8, -1, -1.7496}, {6, -1, 5.3051}};
+  for (const Case& k : cases) {
+    Sim s(pulseHomeAxis());
+    FbSlot& p = s.slot(FbKind::Power);
+    FbSlot& h = s.slot(FbKind::Home);
+    s.powerOn(p);
+    const uint64_t done = runSmcHome(s, h, smcHome(k.mode, k.dir), 20000);
+    EXPECT_TRUE(done && h.out.done) << k.mode << " " << code(h.out.errorId);
+    EXPECT_EQ(s.ax->set().p, 0.0) << k.mode;
+    EXPECT_NEAR(mechanical(*s.ax), k.mech, 1e-9) << k.mode << " dir " << k.dir;
+  }
+}
+
+// imode 8 (EZ only), +1 u/s: the mark at 0.2504 passes in the step of c0 + 256, is seen in c0 + 257;
+// stop (0.005 u), back 0.0066 u (16.25 ms): Done at c0 + 284.  bHomeCompleteMode 0 leaves the
+// coordinates alone, 2 moves on by fHomePosition and makes that 0; iDriverCounter delays Done.
+TEST(Homing, SmcHomeIndexOnlyAndCompleteModes) {
+  struct Case { int complete; int64_t counter; uint64_t doneAfter; double pos, mech; };
+  const Case cases[] = {{1, 0, 284, 0, 0.2504}, {0, 0, 284, 0.2504, 0.2504}, {1, 50, 284 + 50, 0, 0.2504},
+                        {2, 0, 284 + 410, 0, 0.6504}};
+  for (const Case& k : cases) {
+    Sim s(pulseHomeAxis());
+    FbSlot& p = s.slot(FbKind::Power);
+    FbSlot& h = s.slot(FbKind::Home);
+    s.powerOn(p);
+    SmcHomeInputs in = smcHome(8);
+    in.completeMode = k.complete;
+    in.driverCounter = k.counter;
+    in.homePosition = 0.4;
+    const uint64_t c0 = s.cycle;
+    const uint64_t done = runSmcHome(s, h, in);
+    EXPECT_TRUE(h.out.done);
+    EXPECT_EQ(done, c0 + k.doneAfter) << k.complete << " " << k.counter;
+    EXPECT_NEAR(s.ax->set().p, k.pos, 1e-12);
+    EXPECT_NEAR(mechanical(*s.ax), k.mech, 1e-9);
+  }
+}
+
+// A limit switch in the search direction: emergency stop (bELStopMode FALSE: v = 0 at once) or
+// braking (TRUE), then the search goes the other way; iHomeElEnable FALSE ignores the limits.
+TEST(Homing, SmcHomeLimitReversal) {
+  for (bool decelerate : {false, true}) {
+    Sim s(pulseHomeAxis());
+    FbSlot& p = s.slot(FbKind::Power);
+    FbSlot& h = s.slot(FbKind::Home);
+    s.powerOn(p);
+    SmcHomeInputs in = smcHome(6, -1);
+    in.limitDecelerate = decelerate;
+    const uint64_t c0 = s.cycle;
+    uint64_t done = 0;
+    for (int i = 0; i < 5000 && !done; ++i) {
+      callSmcHome(s.k, h, *s.ax, true, in, s.ctx());
+      const uint64_t c = s.cycle;
+      s.endCycle();
+      // The limit (-10.0052) closes in the step of c0 + 1051 (p = -10.01), seen in c0 + 1052.
+      if (c == c0 + 1052) {
+        EXPECT_NEAR(s.ax->set().p, decelerate ? -10.02 : -10.02, 1e-9);
+        EXPECT_NEAR(s.ax->set().v, decelerate ? -10 : 0, 1e-9);
+      }
+      if (c == c0 + 1053) { EXPECT_NEAR(s.ax->set().v, decelerate ? -9.9 : 0.1, 1e-9); }
+      if (h.out.done) done = c;
+    }
+    EXPECT_TRUE(done);
+    EXPECT_NEAR(mechanical(*s.ax), 5.3051, 1e-9);   // entered moving +: the lower edge
+  }
+}
+
+TEST(Homing, SmcHomeStopAndRelease) {
+  for (bool viaStop : {true, false}) {
+    Sim s(pulseHomeAxis());
+    FbSlot& p = s.slot(FbKind::Power);
+    FbSlot& h = s.slot(FbKind::Home);
+    s.powerOn(p);
+    SmcHomeInputs in = smcHome(0);
+    for (int i = 0; i < 300; ++i) {
+      callSmcHome(s.k, h, *s.ax, true, in, s.ctx());
+      s.endCycle();
+    }
+    // t = 0.299: p = 2.49, v = 10; the stop starts at t = 0.3 (2.5) and takes 0.1 s (0.5 u).
+    EXPECT_NEAR(s.ax->set().p, 2.49, 1e-9);
+    in.stop = viaStop;
+    const uint64_t c1 = s.cycle;
+    uint64_t aborted = 0;
+    for (int i = 0; i < 200 && !aborted; ++i) {
+      callSmcHome(s.k, h, *s.ax, viaStop, in, s.ctx());
+      const uint64_t c = s.cycle;
+      s.endCycle();
+      if (h.out.aborted) aborted = c;
+      else ASSERT_TRUE(h.out.busy);
+    }
+    EXPECT_EQ(aborted, c1 + 100);
+    EXPECT_NEAR(s.ax->set().p, 3.0, 1e-9);
+    EXPECT_EQ(s.ax->state(), AxisState::Standstill);
+    callSmcHome(s.k, h, *s.ax, viaStop, in, s.ctx());
+    s.endCycle();
+    EXPECT_EQ(h.out.aborted, viaStop);   // held while bExecute is TRUE, else one cycle
+  }
+}
+
+TEST(Homing, SmcHomeErrors) {
+  Sim s(pulseHomeAxis());
+  FbSlot& p = s.slot(FbKind::Power);
+  FbSlot& h = s.slot(FbKind::Home);
+  auto edge = [&](const SmcHomeInputs& in) {
+    callSmcHome(s.k, h, *s.ax, false, in, s.ctx());
+    callSmcHome(s.k, h, *s.ax, true, in, s.ctx());
+    s.endCycle();
+  };
+  edge(smcHome(0));
+  EXPECT_EQ(h.out.errorId, Error::HomeAxisWasntStandstill);   // power off
+  s.powerOn(p);
+  const double nan = std::nan("");
+  for (double v : {0.0, -5.0, nan}) {
+    SmcHomeInputs in = smcHome(0);
+    in.velocityFast = v;
+    edge(in);
+    EXPECT_EQ(h.out.errorId, Error::HomingInvalidVelAcc);
+    in = smcHome(0);
+    in.deceleration = v;
+    edge(in);
+    EXPECT_EQ(h.out.errorId, Error::HomingInvalidVelAcc);
+  }
+  for (int mode : {3, 4, 5, 11, -1}) {
+    edge(smcHome(mode));
+    EXPECT_EQ(h.out.errorId, Error::HomingInvalidVelAcc) << mode;
+  }
+  SmcHomeInputs in = smcHome(0, 0);
+  edge(in);
+  EXPECT_EQ(h.out.errorId, Error::HomingInvalidVelAcc);
+  in = smcHome(0);
+  in.completeMode = 3;
+  edge(in);
+  EXPECT_EQ(h.out.errorId, Error::HomingInvalidVelAcc);
+  EXPECT_FALSE(h.out.busy);
+  EXPECT_EQ(s.ax->state(), AxisState::Standstill);
+  s.k.errorStop(*s.ax, Error::DriveError, s.now, s.cycle);
+  edge(smcHome(0));
+  EXPECT_EQ(h.out.errorId, Error::HomeAxisInErrorStop);
+  // The mode's sensor is not there: 17.
+  AxisConfig cfg = pulseHomeAxis();
+  cfg.drive.hasHomeSwitch = false;
+  cfg.drive.indexPeriod = 0;
+  Sim s2(cfg);
+  FbSlot& p2 = s2.slot(FbKind::Power);
+  FbSlot& h2 = s2.slot(FbKind::Home);
+  s2.powerOn(p2);
+  callSmcHome(s2.k, h2, *s2.ax, true, smcHome(0), s2.ctx());
+  EXPECT_EQ(h2.out.errorId, Error::DiHomingError);
+  s2.endCycle();
+  callSmcHome(s2.k, h2, *s2.ax, false, smcHome(8), s2.ctx());
+  callSmcHome(s2.k, h2, *s2.ax, true, smcHome(8), s2.ctx());
+  EXPECT_EQ(h2.out.errorId, Error::DiHomingError);
+}
