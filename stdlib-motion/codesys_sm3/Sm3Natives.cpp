@@ -55,7 +55,7 @@ void mirror(const Axis& ax, sm3::AXIS_REF_SM3& r) {
   ax.drive().readObject(0x60FD, 0, din);
   r.in.dwDigitalInputs = static_cast<uint32_t>(din);
   r.out.wControlWord = ax.drive().controlword();
-  r.out.byModesOfOperation = 8;
+  r.out.byModesOfOperation = ax.drive().modeOfOperation();   // 6 during drive-side homing
   r.out.diSetPosition = clampDint(ax.set().p * inc);
   r.out.diSetVelocity = clampDint(ax.set().v * inc);
 }
