@@ -22,6 +22,8 @@ namespace stc::motion::sm3face {
 
 namespace sm3 = stc::native::sm3;
 
+void registerSm3HomingNatives();   // Sm3Homing.cpp (also the Leadshine homing blocks)
+
 // The axis behind an AXIS_REF_SM3 in-out, bound on first use (a virtual axis
 // configured from the variable's initial values when project.toml has none);
 // null when the calling task does not own it (every FB of an axis runs in one task).

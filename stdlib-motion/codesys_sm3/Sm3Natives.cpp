@@ -55,7 +55,7 @@ void mirror(const Axis& ax, sm3::AXIS_REF_SM3& r) {
   ax.drive().readObject(0x60FD, 0, din);
   r.in.dwDigitalInputs = static_cast<uint32_t>(din);
   r.out.wControlWord = ax.drive().controlword();
-  r.out.byModesOfOperation = ax.drive().modeOfOperation();
+  r.out.byModesOfOperation = ax.drive().modeOfOperation();   // 6 during drive-side homing
   r.out.wSetTorque = static_cast<int16_t>(std::fmax(-32768, std::fmin(32767, std::nearbyint(ax.drive().targetTorque() * 10))));
   r.out.diSetPosition = clampDint(ax.set().p * inc);
   r.out.diSetVelocity = clampDint(ax.set().v * inc);
@@ -191,6 +191,7 @@ void registerSm3Natives() {
   registerSm3ConfigNatives();
   registerSm3DiagNatives();
   registerSm3ProfilesNatives();
+  registerSm3HomingNatives();
   STC_SM3_NATIVE(MC_Power, MC_Power)
   STC_SM3_NATIVE(MC_Reset, MC_Reset)
   STC_SM3_NATIVE(MC_MoveAbsolute, moveBody<sm3::MC_MoveAbsolute, FbKind::MoveAbsolute>)

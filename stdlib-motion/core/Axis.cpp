@@ -5,6 +5,19 @@
 
 namespace stc::motion {
 
+namespace {
+// The drive's homing set point continued at its velocity: what a command
+// that takes over between two cycles (MC_Stop) starts from.
+class Coast final : public Generator {
+public:
+  Coast(double p, double v) : p_(p), v_(v) {}
+  Kinematic at(double t) const override { return Kinematic{p_ + v_ * t, v_, 0}; }
+  double duration() const override { return 0; }
+private:
+  double p_, v_;
+};
+}  // namespace
+
 Axis::Axis(AxisConfig cfg, uint32_t index) : cfg_(std::move(cfg)), index_(index), drive_(cfg_.drive) {}
 
 double Axis::reportPosition(double unwrapped) const {
@@ -39,6 +52,7 @@ void Axis::updateControlword() {
     }
   }
   if (resetPulse_) cw |= 0x80;
+  if (wantPower_ && driveStart_) cw |= cwBits_;
   drive_.setControlword(cw);
 }
 
@@ -226,6 +240,11 @@ StepResult Axis::step(int64_t nowNs, double dt) {
   }
 
   // ---- drive
+  // Drive-side homing (6060h = 6) lasts while the axis is in Homing; any other state takes the drive back to CSP.
+  if (state_ != AxisState::Homing && drive_.homingMode()) {
+    drive_.writeObject(0x6060, 0, 8);
+    cwBits_ = 0;
+  }
   if (cfg_.drive.kind != AxisKind::Servo) updateControlword();
   drive_.cycle(set_.p, set_.v, set_.a, dt, nowNs);
   if (cfg_.drive.kind == AxisKind::Servo) updateControlword();   // answered in the next cycle
@@ -236,6 +255,21 @@ StepResult Axis::step(int64_t nowNs, double dt) {
     holdAt(drive_.actPosition());
     set_.v = drive_.actVelocity();
     set_.a = a;
+  } else if (state_ == AxisState::Homing && drive_.homingMode()) {
+    // The drive generates the set point: the axis reports (and supervises) the drive's.
+    Kinematic h;
+    drive_.homingSetPoint(h.p, h.v, h.a);
+    holdAt(h.p);
+    set_.v = h.v;
+    set_.a = h.a;
+    lastCommandedTarget = h.p;
+    if (h.v != 0) {
+      mv_.kind = Movement::Kind::External;
+      mv_.gen = std::make_shared<Coast>(h.p, h.v);
+      mv_.originNs = nowNs;
+      mv_.originFrac = 0;
+      mv_.reached = true;
+    }
   }
 
   // ---- supervision (the first error wins; ErrorStop reports no further ones)

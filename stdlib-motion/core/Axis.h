@@ -128,6 +128,8 @@ public:
   bool operational() const { return drive_.operationEnabled(); }
   bool ready() const { return operational() && driveStart_ && state_ != AxisState::ErrorStop; }
   void requestPower(bool regulatorOn, bool driveStart, int64_t nowNs);
+  // Mode-specific controlword bits 4-6, 8 (homing: bit 4 starts the method); sent at once.
+  void setControlwordBits(uint16_t bits) { cwBits_ = bits & 0x0170; updateControlword(); }
 
   // ---- errors
   // ErrorStop: the set point ramps down with the error deceleration (or
@@ -191,6 +193,7 @@ private:
   AxisState state_ = AxisState::PowerOff;
   Error error_ = Error::None;
   bool wantPower_ = false, driveStart_ = false, resetPulse_ = false;
+  uint16_t cwBits_ = 0;
   Kinematic set_;                        // total set state
   Kinematic heldBase_, baseNow_;                   // base movement state (without offset and superimposed part)
   Movement mv_, sup_;

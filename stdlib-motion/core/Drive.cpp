@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stdlib-motion/core/Homing.h"
+
 namespace stc::motion {
 
 namespace {
@@ -81,6 +83,7 @@ uint16_t Drive::statusword() const {
     case Cia402::Fault: sw = 0x0018; break;
   }
   if (communication_) sw |= 0x0200;   // remote
+  if (homing_) sw |= homing_->statusBits(*this);   // bits 10, 12, 13 in homing mode; 15 once homed
   return sw;
 }
 
@@ -203,8 +206,19 @@ void Drive::cycle(double setPos, double setVel, double setAcc, double dt, int64_
     actTorque_ = 0;
     lagSetPos_ = actPos_;
     lagSetVel_ = 0;
+    if (homing_) homing_->powerOff(*this);
     return;
   }
+  if (homingMode() && state_ == Cia402::OperationEnabled) {
+    // Homing mode: the drive ignores the controller's set values and runs the method of 6098h.
+    if (!homing_) homing_ = std::make_shared<DriveHoming>();
+    double p = 0, v = 0, a = 0;
+    homing_->before(*this, dt, p, v, a);
+    motor(p, v, a, dt);
+    homing_->after(*this);
+    return;
+  }
+  if (homing_) homing_->leaveMode(*this);
   if (modesOfOperation_ == 10) {   // CST: the load accelerates with torque / inertia
     actTorque_ = targetTorque_;
     const double v0 = cfg_.inertia > 0 ? actVel_ : 0.0;
@@ -212,6 +226,16 @@ void Drive::cycle(double setPos, double setVel, double setAcc, double dt, int64_
     actPos_ += 0.5 * (v0 + actVel_) * dt;
     return;
   }
+  motor(setPos, setVel, setAcc, dt);
+}
+
+void Drive::homingSetPoint(double& p, double& v, double& a) const {
+  if (homing_) return homing_->setPoint(*this, p, v, a);
+  p = actPos_;
+  v = a = 0;
+}
+
+void Drive::motor(double setPos, double setVel, double setAcc, double dt) {
   const bool csv = modesOfOperation_ == 9;   // CSV: no position loop, the motor follows the set velocity
   switch (cfg_.model) {
     case DriveModel::Ideal:
@@ -254,15 +278,16 @@ void Drive::cycle(double setPos, double setVel, double setAcc, double dt, int64_
   lagSetVel_ = setVel;
 }
 
-bool Drive::limitPositiveActive() const { return forcedLimitPos_ || (cfg_.hasLimitPositive && actPos_ >= cfg_.limitPositive); }
-bool Drive::limitNegativeActive() const { return forcedLimitNeg_ || (cfg_.hasLimitNegative && actPos_ <= cfg_.limitNegative); }
+bool Drive::limitPositiveActive() const { return forcedLimitPos_ || (cfg_.hasLimitPositive && actPos_ - shift_ >= cfg_.limitPositive); }
+bool Drive::limitNegativeActive() const { return forcedLimitNeg_ || (cfg_.hasLimitNegative && actPos_ - shift_ <= cfg_.limitNegative); }
 bool Drive::homeSwitchActive() const {
-  return cfg_.hasHomeSwitch && actPos_ >= cfg_.homeSwitchLow && actPos_ <= cfg_.homeSwitchHigh;
+  const double x = actPos_ - shift_;
+  return cfg_.hasHomeSwitch && x >= cfg_.homeSwitchLow && x <= cfg_.homeSwitchHigh;
 }
 
 bool Drive::indexPassed(double& at) const {
   if (cfg_.indexPeriod <= 0 || actPos_ == prevPos_) return false;
-  const double p = cfg_.indexPeriod, o = cfg_.indexOffset;
+  const double p = cfg_.indexPeriod, o = cfg_.indexOffset + shift_;
   // The first index mark met in the direction of travel, in (prev, act] or [act, prev).
   const double mark = actPos_ > prevPos_ ? o + (std::floor((prevPos_ - o) / p) + 1) * p
                                          : o + (std::ceil((prevPos_ - o) / p) - 1) * p;

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace stc::motion {
@@ -60,6 +61,8 @@ enum class Cia402 : uint8_t {
   SwitchOnDisabled, ReadyToSwitchOn, SwitchedOn, OperationEnabled, QuickStopActive, FaultReactionActive, Fault,
 };
 
+class DriveHoming;   // core/Homing.h: the CiA402 homing methods (mode 6)
+
 class Drive {
 public:
   explicit Drive(const DriveConfig& cfg);
@@ -91,7 +94,10 @@ public:
   double actPosition() const { return actPos_; }
   double actVelocity() const { return actVel_; }
   double actTorque() const { return actTorque_; }
-  void shift(double delta) { actPos_ += delta; prevPos_ += delta; lagSetPos_ += delta; }
+  // A new coordinate system (MC_SetPosition, homing): the sensors stay where they are on the mechanics.
+  void shift(double delta) { actPos_ += delta; prevPos_ += delta; lagSetPos_ += delta; shift_ += delta; }
+  // Coordinates minus this = the mechanical position the sensor positions of DriveConfig refer to.
+  double coordinateShift() const { return shift_; }
   void place(double pos) { actPos_ = prevPos_ = lagSetPos_ = pos; actVel_ = lagSetVel_ = 0; }
   // Cyclic modes (6060h): 8 CSP (position loop), 9 CSV (the motor follows the set velocity),
   // 10 CST (the motor follows the target torque 6071h: acceleration = torque / inertia;
@@ -106,10 +112,18 @@ public:
   bool homeSwitchActive() const;
   // An index pulse passed during the last cycle: its position.
   bool indexPassed(double& at) const;
+  double prevPosition() const { return prevPos_; }
+
+  // ---- homing mode (6060h = 6): the drive generates its own set point (core/Homing.cpp)
+  bool homingMode() const { return modesOfOperation_ == 6 && cfg_.kind != AxisKind::Encoder; }
+  // The drive's internal set point in homing mode [u, u/s, u/s^2].
+  void homingSetPoint(double& p, double& v, double& a) const;
 
 private:
+  friend class DriveHoming;
   void applyFaults(int64_t nowNs);
   void stepStateMachine();
+  void motor(double setPos, double setVel, double setAcc, double dt);
   DriveConfig cfg_;
   size_t nextFault_ = 0;
   Cia402 state_ = Cia402::SwitchOnDisabled;
@@ -119,9 +133,11 @@ private:
   bool forcedLimitPos_ = false, forcedLimitNeg_ = false;
   double actPos_ = 0, actVel_ = 0, actTorque_ = 0, prevPos_ = 0, targetTorque_ = 0;
   double lagSetPos_ = 0, lagSetVel_ = 0;   // the set point of the previous cycle (Lag model)
+  double shift_ = 0;                 // sum of the coordinate shifts
   int8_t modesOfOperation_ = 8;      // 0x6060: cyclic synchronous position
   struct Object { uint16_t index; uint8_t sub; bool writable; int64_t value; };
   std::vector<Object> od_;
+  std::shared_ptr<DriveHoming> homing_;   // created on the first cycle in homing mode
 };
 
 }  // namespace stc::motion

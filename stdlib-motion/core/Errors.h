@@ -15,6 +15,7 @@ enum class Error : uint16_t {
   HwLimitsExceeded = 11,             // SMC_DI_HWLIMITS_EXCEEDED
   VoltageDisabled = 14,              // SMC_DI_VOLTAGE_DISABLED
   FollowingError = 16,               // SMC_DI_POSITIONLAGERROR
+  DiHomingError = 17,                // SMC_DI_HOMING_ERROR
   RegulatorOrStartNotSet = 20,       // SMC_REGULATOR_OR_START_NOT_SET
   WrongControllerMode = 21,          // SMC_WRONG_CONTROLLER_MODE
   FbWasntCalledDuringMotion = 30,    // SMC_FB_WASNT_CALLED_DURING_MOTION
@@ -46,6 +47,9 @@ enum class Error : uint16_t {
   WriteParamConversionError = 143,   // SMC_WP_PARAM_CONVERSION_ERROR
   HomeAxisWasntStandstill = 170,     // SMC_H_AXIS_WASNT_STANDSTILL
   HomeAxisDidntStartHoming = 171,    // SMC_H_AXIS_DIDNT_START_HOMING
+  HomeAxisDidntAnswer = 172,         // SMC_H_AXIS_DIDNT_ANSWER
+  HomeErrorWhenStopping = 173,       // SMC_H_ERROR_WHEN_STOPPING
+  HomeAxisInErrorStop = 174,         // SMC_H_AXIS_IN_ERRORSTOP
   StopInvalidAccDec = 181,           // SMC_MS_INVALID_ACCDEC_VALUES
   StopDirectionNotApplicable = 182,  // SMC_MS_DIRECTION_NOT_APPLICABLE
   StopAxisInErrorStop = 183,         // SMC_MS_AXIS_IN_ERRORSTOP
