@@ -8,17 +8,11 @@ using namespace stc::motion::sm3face;
 
 namespace {
 
-// FbOutputs plus the b-prefixed outputs of the configuration FBs and the
-// Valid/Value of the parameter readers.
+// FbOutputs plus the Valid/Value of the parameter readers.
 template <class T>
 void publishConfig(void* instance, const FbOutputs& o) {
   publish<T>(instance, o);
   T* s = static_cast<T*>(instance);
-  if constexpr (requires { s->bDone; }) s->bDone = o.done;
-  if constexpr (requires { s->bBusy; }) s->bBusy = o.busy;
-  if constexpr (requires { s->bError; }) s->bError = o.error;
-  if constexpr (requires { s->nErrorID; }) s->nErrorID = static_cast<decltype(s->nErrorID)>(code(o.errorId));
-  if constexpr (requires { s->eErrorID; }) s->eErrorID = static_cast<decltype(s->eErrorID)>(code(o.errorId));
   if constexpr (requires { s->Valid; }) {
     const ParameterState& st = parameterState(kernel().slot(s->__handle, s, FbKind::Parameter, &publishConfig<T>));
     s->Valid = st.valid;

@@ -218,10 +218,7 @@ void SMC_ErrorString(char* result, int16_t errorId) {
 // ---- the diagnostic log
 void publishLog(void* instance, const FbOutputs& o) {
   auto* s = static_cast<sm3::SMC_AxisDiagnosticLog*>(instance);
-  s->bDone = o.done;
-  s->bBusy = o.busy;
-  s->bError = o.error;
-  s->ErrorID = id(o.errorId);
+  publish<sm3::SMC_AxisDiagnosticLog>(instance, o);
   FbSlot& slot = kernel().slot(s->__handle, s, FbKind::Diagnostic, &publishLog);
   auto* log = dynamic_cast<diag::DiagnosticLog*>(slot.behaviour.get());
   s->bRecording = o.busy && log && log->recording;

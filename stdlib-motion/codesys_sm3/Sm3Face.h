@@ -31,18 +31,28 @@ Axis* bind(sm3::AXIS_REF_SM3* ref, const CallCtx& c);
 // Copies the axis into its AXIS_REF_SM3 variable (after every call and cycle).
 void mirrorAll(Axis& ax);
 
+// Copies FbOutputs into an ST instance, under whichever of the vendors'
+// output names the FB has (Done / bDone, ErrorID / ErrorId / nErrorID / iErrorID ...).
 template <class T>
 inline void publish(void* instance, const FbOutputs& o) {
   T* s = static_cast<T*>(instance);
+  auto id = [&](auto& field) { field = static_cast<std::remove_reference_t<decltype(field)>>(code(o.errorId)); };
   if constexpr (requires { s->Done; }) s->Done = o.done;
+  if constexpr (requires { s->bDone; }) s->bDone = o.done;
   if constexpr (requires { s->InVelocity; }) s->InVelocity = o.inState;
   if constexpr (requires { s->InEndVelocity; }) s->InEndVelocity = o.inState;
   if constexpr (requires { s->Busy; }) s->Busy = o.busy;
+  if constexpr (requires { s->bBusy; }) s->bBusy = o.busy;
   if constexpr (requires { s->Active; }) s->Active = o.active;
   if constexpr (requires { s->CommandAborted; }) s->CommandAborted = o.aborted;
+  if constexpr (requires { s->bCommandAborted; }) s->bCommandAborted = o.aborted;
   if constexpr (requires { s->Error; }) s->Error = o.error;
-  if constexpr (requires { s->ErrorID; }) s->ErrorID = static_cast<int16_t>(code(o.errorId));
-  if constexpr (requires { s->ErrorId; }) s->ErrorId = static_cast<int16_t>(code(o.errorId));
+  if constexpr (requires { s->bError; }) s->bError = o.error;
+  if constexpr (requires { s->ErrorID; }) id(s->ErrorID);
+  if constexpr (requires { s->ErrorId; }) id(s->ErrorId);
+  if constexpr (requires { s->nErrorID; }) id(s->nErrorID);
+  if constexpr (requires { s->iErrorID; }) id(s->iErrorID);
+  if constexpr (requires { s->eErrorID; }) id(s->eErrorID);
   if constexpr (requires { s->Status; }) {
     s->Status = o.status;
     s->bRegulatorRealState = o.regulatorRealState;
@@ -130,6 +140,12 @@ void axisFb(T* self, F call) {
 
 // Per-family registration (called at the start of registerSm3Natives()).
 void registerSm3DiagNatives();
+
+// Like axisFb, for bodies that take the FB's kernel slot: call(kernel, slot, axis, ctx).
+template <class T, class F>
+void axisFbSlot(T* self, FbKind kind, F call) {
+  axisFb(self, [&](Kernel& k, Axis& ax, const CallCtx& c) { call(k, slotOf(self, kind), ax, c); });
+}
 
 // Registers `fn` as the native body of the ST FB `name` (checked against the generated signature).
 #define STC_SM3_NATIVE(name, ...)                                                        \

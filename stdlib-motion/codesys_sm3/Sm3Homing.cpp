@@ -10,11 +10,7 @@ namespace {
 
 void smcHomingPublish(void* instance, const FbOutputs& o) {
   auto* s = static_cast<sm3::SMC_Homing*>(instance);
-  s->bDone = o.done;
-  s->bBusy = o.busy;
-  s->bCommandAborted = o.aborted;
-  s->bError = o.error;
-  s->nErrorID = static_cast<int16_t>(code(o.errorId));
+  publish<sm3::SMC_Homing>(instance, o);
   FbSlot& slot = kernel().slot(s->__handle, s, FbKind::Home, &smcHomingPublish);
   s->bStartLatchingIndex = smcHomingLatching(slot);
 }

@@ -12,33 +12,6 @@ using namespace stc::motion::sm3face;
 
 namespace {
 
-// Outputs of the blocks with CODESYS-prefixed names (bBusy, bDone, iErrorID / nErrorID ...).
-template <class T>
-void publishB(void* instance, const FbOutputs& o) {
-  T* s = static_cast<T*>(instance);
-  if constexpr (requires { s->bDone; }) s->bDone = o.done;
-  s->bBusy = o.busy;
-  if constexpr (requires { s->bCommandAborted; }) s->bCommandAborted = o.aborted;
-  s->bError = o.error;
-  if constexpr (requires { s->iErrorID; }) s->iErrorID = static_cast<int16_t>(code(o.errorId));
-  if constexpr (requires { s->nErrorID; }) s->nErrorID = static_cast<int16_t>(code(o.errorId));
-}
-
-template <class T, class F>
-void axisFbB(T* self, FbKind kind, F call) {
-  CallCtx c = callContext();
-  Axis* ax = bind(self->Axis, c);
-  if (!ax) {
-    FbOutputs o;
-    o.error = true;
-    o.errorId = Error::NotReadyForMotion;
-    publishB<T>(self, o);
-    return;
-  }
-  call(kernel(), kernel().slot(self->__handle, self, kind, &publishB<T>), *ax, c);
-  mirrorAll(*ax);
-}
-
 // The first ArraySize points of a table, read on the rising edge only.
 template <class T, class Table, class Get>
 void profileBody(T* self, const Table* table, bool execute, TableKind kind, double scale, Get get) {
@@ -69,7 +42,7 @@ void MC_AccelerationProfile(sm3::MC_AccelerationProfile* self) {
 }
 
 void SMC_FollowPosition(sm3::SMC_FollowPosition* self) {
-  axisFbB(self, FbKind::Follow, [&](Kernel& k, FbSlot& fb, Axis& ax, const CallCtx& c) {
+  axisFbSlot(self, FbKind::Follow, [&](Kernel& k, FbSlot& fb, Axis& ax, const CallCtx& c) {
     FollowInputs in;
     in.mask = kFollowPosition;
     in.position = self->fSetPosition;
@@ -77,7 +50,7 @@ void SMC_FollowPosition(sm3::SMC_FollowPosition* self) {
   });
 }
 void SMC_FollowPositionVelocity(sm3::SMC_FollowPositionVelocity* self) {
-  axisFbB(self, FbKind::Follow, [&](Kernel& k, FbSlot& fb, Axis& ax, const CallCtx& c) {
+  axisFbSlot(self, FbKind::Follow, [&](Kernel& k, FbSlot& fb, Axis& ax, const CallCtx& c) {
     FollowInputs in;
     in.mask = kFollowPosition | kFollowVelocity;
     in.position = self->fSetPosition;
@@ -86,7 +59,7 @@ void SMC_FollowPositionVelocity(sm3::SMC_FollowPositionVelocity* self) {
   });
 }
 void SMC_FollowSetValues(sm3::SMC_FollowSetValues* self) {
-  axisFbB(self, FbKind::Follow, [&](Kernel& k, FbSlot& fb, Axis& ax, const CallCtx& c) {
+  axisFbSlot(self, FbKind::Follow, [&](Kernel& k, FbSlot& fb, Axis& ax, const CallCtx& c) {
     FollowInputs in;
     in.mask = self->dwValueMask;
     in.position = self->fSetPosition;
@@ -99,7 +72,7 @@ void SMC_FollowSetValues(sm3::SMC_FollowSetValues* self) {
   });
 }
 void SMC_FollowVelocity(sm3::SMC_FollowVelocity* self) {
-  axisFbB(self, FbKind::Follow, [&](Kernel& k, FbSlot& fb, Axis& ax, const CallCtx& c) {
+  axisFbSlot(self, FbKind::Follow, [&](Kernel& k, FbSlot& fb, Axis& ax, const CallCtx& c) {
     FollowInputs in;
     in.mask = kFollowVelocity;
     in.velocity = self->fSetVelocity;
@@ -107,12 +80,12 @@ void SMC_FollowVelocity(sm3::SMC_FollowVelocity* self) {
   });
 }
 void SMC_SetTorque(sm3::SMC_SetTorque* self) {
-  axisFbB(self, FbKind::Torque, [&](Kernel& k, FbSlot& fb, Axis& ax, const CallCtx& c) {
+  axisFbSlot(self, FbKind::Torque, [&](Kernel& k, FbSlot& fb, Axis& ax, const CallCtx& c) {
     callSetTorque(k, fb, ax, self->bEnable, self->fTorque, c);
   });
 }
 void SMC_SetControllerMode(sm3::SMC_SetControllerMode* self) {
-  axisFbB(self, FbKind::Config, [&](Kernel& k, FbSlot& fb, Axis& ax, const CallCtx& c) {
+  axisFbSlot(self, FbKind::Config, [&](Kernel& k, FbSlot& fb, Axis& ax, const CallCtx& c) {
     callSetControllerMode(k, fb, ax, self->bExecute, static_cast<int16_t>(self->nControllerMode), c);
   });
 }

@@ -8,33 +8,11 @@ using namespace stc::motion::sm3face;
 
 namespace {
 
-// Outputs with the b-prefixed names of these blocks.
-template <class T>
-void publishB(void* instance, const FbOutputs& o) {
-  T* s = static_cast<T*>(instance);
-  s->bDone = o.done;
-  s->bBusy = o.busy;
-  s->bCommandAborted = o.aborted;
-  if constexpr (requires { s->bError; }) s->bError = o.error;
-  if constexpr (requires { s->Error; }) s->Error = o.error;
-  if constexpr (requires { s->nErrorID; }) s->nErrorID = code(o.errorId);
-  if constexpr (requires { s->ErrorID; }) s->ErrorID = static_cast<int16_t>(code(o.errorId));
-}
-
-template <class T>
-bool refuseB(T* self, Axis* ax) {
-  if (ax) return false;
-  FbOutputs o;
-  o.error = true;
-  o.errorId = Error::NotReadyForMotion;
-  publishB<T>(self, o);
-  return true;
-}
 
 void SMC_Home(sm3::SMC_Home* self) {
   CallCtx c = callContext();
   Axis* ax = bind(self->Axis, c);
-  if (refuseB(self, ax)) return;
+  if (refuse(self, ax)) return;
   SmcHomeInputs in;
   in.stop = self->bStop;
   in.velocityFast = self->fVelocityFast;
@@ -49,14 +27,14 @@ void SMC_Home(sm3::SMC_Home* self) {
   in.limitsEnable = self->iHomeElEnable;
   in.limitDecelerate = self->bELStopMode;
   in.driverCounter = self->iDriverCounter;
-  callSmcHome(kernel(), kernel().slot(self->__handle, self, FbKind::Home, &publishB<sm3::SMC_Home>), *ax, self->bExecute, in, c);
+  callSmcHome(kernel(), kernel().slot(self->__handle, self, FbKind::Home, &publish<sm3::SMC_Home>), *ax, self->bExecute, in, c);
   mirrorAll(*ax);
 }
 
 void LS_EtherCATAxis_HomeMove(sm3::LS_EtherCATAxis_HomeMove* self) {
   CallCtx c = callContext();
   Axis* ax = bind(self->Axis, c);
-  if (refuseB(self, ax)) return;
+  if (refuse(self, ax)) return;
   DriveHomeParams p;
   p.method = self->Home_Method;
   p.fastVel = self->Home_FastVel;
@@ -64,7 +42,7 @@ void LS_EtherCATAxis_HomeMove(sm3::LS_EtherCATAxis_HomeMove* self) {
   p.acc = self->Home_Acc;
   p.homePos = self->Home_Pos;
   p.axisNo = self->HomeAxisNo;
-  callDriveHomeMove(kernel(), kernel().slot(self->__handle, self, FbKind::Home, &publishB<sm3::LS_EtherCATAxis_HomeMove>), *ax,
+  callDriveHomeMove(kernel(), kernel().slot(self->__handle, self, FbKind::Home, &publish<sm3::LS_EtherCATAxis_HomeMove>), *ax,
                     self->bExecute, p, c);
   mirrorAll(*ax);
 }
