@@ -442,6 +442,8 @@ void Kernel::callMove(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, 
       fb.kind = FbKind::MoveSuperImposed;
       return;
     }
+    // Not supported on profile tables (the manual gives no code: 34, the axis is not ready for it).
+    if (ax.controller && ax.controller->kind == FbKind::Profile) return fail(fb, Error::NotReadyForMotion, c);
     if (ax.superimposer && ax.superimposer != &fb) finish(*ax.superimposer, &c, c.cycle, false, true, Error::None);
     ax.sample(c.nowNs);
     ax.startSuperimposed(in.distance, ax.limitsFor(std::fabs(in.velocity), in.acceleration, in.deceleration, in.jerk), c.nowNs);

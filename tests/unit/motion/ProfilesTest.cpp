@@ -170,6 +170,26 @@ TEST(MotionProfiles, PositionProfileIsAbortedByAMove) {
   EXPECT_FALSE(fb.out.aborted);
 }
 
+TEST(MotionProfiles, SuperImposedIsRefusedDuringAProfile) {
+  Sim s;
+  FbSlot& p = s.slot(FbKind::Power);
+  FbSlot& fb = s.slot(FbKind::Profile);
+  FbSlot& sup = s.slot(FbKind::MoveSuperImposed);
+  s.powerOn(p);
+  ProfileRun r{s, fb, TableKind::Position, table({{1, 10}})};
+  r.call(true);
+  s.endCycle();
+  r.call(true);
+  MoveInputs in;
+  in.distance = 1;
+  in.velocity = in.acceleration = in.deceleration = 10;
+  s.k.callMove(sup, *s.ax, true, in, s.ctx());
+  EXPECT_TRUE(sup.out.error);
+  EXPECT_EQ(sup.out.errorId, Error::NotReadyForMotion);
+  EXPECT_TRUE(fb.out.busy);        // the profile runs on
+  EXPECT_FALSE(fb.out.aborted);
+}
+
 TEST(MotionProfiles, ProfileInputErrors) {
   Sim s;
   FbSlot& p = s.slot(FbKind::Power);
