@@ -133,6 +133,9 @@ Kinematic Axis::beginBase(Movement::Kind kind, int64_t nowNs, double frac) {
   mv_.gen.reset();
   mv_.originNs = nowNs;
   mv_.originFrac = frac;
+  mv_.rate = override_;
+  mv_.rateNs = override_ == 1 ? 0 : nowNs;
+  mv_.rateTau = frac;
   mv_.reached = false;
   return s;
 }
@@ -170,6 +173,15 @@ void Axis::startSuperimposed(double distance, const Limits& lim, int64_t nowNs) 
   supState_ = rel;
 }
 
+void Axis::setOverride(double factor, int64_t nowNs) {
+  if (mv_.kind != Movement::Kind::None) {
+    mv_.rateTau = mv_.t(nowNs);
+    mv_.rateNs = nowNs;
+    mv_.rate = factor;
+  }
+  override_ = factor;
+}
+
 void Axis::startExternal(std::shared_ptr<const Generator> gen, int64_t nowNs) {
   beginBase(Movement::Kind::External, nowNs, 0);
   mv_.gen = std::move(gen);
@@ -204,7 +216,13 @@ void Axis::holdAt(double pos) {
 void Axis::sample(int64_t nowNs) {
   Kinematic base = heldBase_;
   base.v = base.a = 0;
-  if (mv_.kind != Movement::Kind::None) base = mv_.at(mv_.t(nowNs));
+  if (mv_.kind != Movement::Kind::None) {
+    base = mv_.at(mv_.t(nowNs));
+    if (mv_.rate != 1) {
+      base.v *= mv_.rate;
+      base.a *= mv_.rate * mv_.rate;
+    }
+  }
   if (sup_.kind != Movement::Kind::None) {
     const double t = sup_.t(nowNs);
     supState_ = t >= sup_.profile.duration() - kEndTolerance ? sup_.profile.end() : sup_.profile.at(t);
@@ -268,6 +286,8 @@ StepResult Axis::step(int64_t nowNs, double dt) {
       mv_.gen = std::make_shared<Coast>(h.p, h.v);
       mv_.originNs = nowNs;
       mv_.originFrac = 0;
+      mv_.rate = 1;
+      mv_.rateNs = 0;
       mv_.reached = true;
     }
   }

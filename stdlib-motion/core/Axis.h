@@ -90,7 +90,15 @@ struct Movement {
   int64_t originNs = 0;          // the profile's t = 0 ...
   double originFrac = 0;         // ... plus this many seconds (blended hand-overs start between cycles)
   bool reached = false;          // the end of the profile has been reached
-  double t(int64_t nowNs) const { return static_cast<double>(nowNs - originNs) * 1e-9 + originFrac; }
+  // Override: from rateNs on, profile time runs at `rate` times the clock (time scaling:
+  // velocities x rate, accelerations x rate^2, the path unchanged).
+  double rate = 1;
+  int64_t rateNs = 0;            // when `rate` took effect ...
+  double rateTau = 0;            // ... and the profile time then (rate == 1 from the origin: unused)
+  double t(int64_t nowNs) const {
+    if (rate == 1 && rateNs == 0) return static_cast<double>(nowNs - originNs) * 1e-9 + originFrac;
+    return rateTau + rate * static_cast<double>(nowNs - rateNs) * 1e-9;
+  }
   double duration() const { return gen ? gen->duration() : profile.duration(); }
   // The state at t; past the end, the end state continued at its velocity.
   Kinematic at(double t) const;
@@ -150,6 +158,11 @@ public:
   void holdAt(double pos);                       // ends every movement, set point at rest at pos
   const Movement& movement() const { return mv_; }
   bool superimposedActive() const { return sup_.kind != Movement::Kind::None; }
+  // Velocity override of the base movement (0 <= factor, 1 = none): from nowNs the
+  // movement in progress, and every later one, runs at factor x its planned speed along
+  // the same path (factor 0 holds the axis on its path).  A superimposed move is not scaled.
+  void setOverride(double factor, int64_t nowNs);
+  double override() const { return override_; }
   // MC_SetPosition: shifts set and actual position by `delta` (no motion).
   void shiftPosition(double delta);
 
@@ -198,6 +211,7 @@ private:
   Kinematic heldBase_, baseNow_;                   // base movement state (without offset and superimposed part)
   Movement mv_, sup_;
   double offset_ = 0;                    // MC_SetPosition shifts and finished superimposed moves
+  double override_ = 1;                  // setOverride
   Kinematic supState_;                   // contribution of the superimposed move in progress
   Limits lastLimits_{1, 1, 1, 0};
   Drive drive_;

@@ -420,3 +420,50 @@ TEST(MotionKernel, ModuloAxisTakesTheShortestWay) {
   EXPECT_TRUE(m.out.done);
   EXPECT_NEAR(s.ax->reportPosition(s.ax->set().p), 10.0, 1e-9);
 }
+
+// Velocity override (time scaling): the same path at factor x the speed.
+TEST(MotionKernel, OverrideScalesTheRunningMoveAlongItsPath) {
+  Sim s;
+  FbSlot& p = s.slot(FbKind::Power);
+  FbSlot& m = s.slot(FbKind::MoveAbsolute);
+  s.powerOn(p);
+  const uint64_t c0 = s.cycle;
+  auto call = [&] { s.k.callMove(m, *s.ax, true, absolute(100, 10, 100, 100), s.ctx()); };
+  call();
+  while (s.cycle < c0 + 5000) {   // kernel steps at t = 0 .. 4.999 s
+    s.endCycle();
+    call();
+  }
+  s.ax->setOverride(0.5, s.now);  // t = 5 s: at 49.5, 10 u/s
+  s.endCycle();
+  EXPECT_NEAR(s.ax->set().p, 49.5, 1e-9);
+  EXPECT_NEAR(s.ax->set().v, 5, 1e-9);
+  for (int i = 0; i < 2000; ++i) {   // 2 s at half speed: profile time 6 s -> 59.5
+    call();
+    s.endCycle();
+  }
+  EXPECT_NEAR(s.ax->set().p, 59.5, 1e-9);   // the last step at t = 7 s
+  EXPECT_NEAR(s.ax->set().v, 5, 1e-9);
+  // Override 0 holds the axis on its path (at profile time 6.0005 s: 59.505).
+  s.ax->setOverride(0, s.now);
+  call();
+  s.endCycle();
+  EXPECT_NEAR(s.ax->set().p, 59.505, 1e-9);
+  for (int i = 0; i < 100; ++i) {
+    call();
+    s.endCycle();
+    ASSERT_NEAR(s.ax->set().p, 59.505, 1e-9);
+    ASSERT_EQ(s.ax->set().v, 0);
+  }
+  EXPECT_TRUE(m.out.busy);
+  // Back to 1: the rest of the move (profile time 6.0005 .. 10.1 s) at full speed.
+  s.ax->setOverride(1, s.now);
+  uint64_t n = 0;
+  while (!m.out.done && n < 10000) {
+    call();
+    s.endCycle();
+    ++n;
+  }
+  EXPECT_EQ(n, 4101u);   // steps at profile times 6.0005, 6.0015 ...: 10.1 is passed in the 4101st
+  EXPECT_EQ(s.ax->set().p, 100.0);
+}
