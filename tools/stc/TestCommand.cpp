@@ -120,10 +120,15 @@ bool loadScenario(const fs::path& path, const std::string& shown, Scenario& sc, 
     error = where(shown, n) + ": error: " + msg;
     return false;
   };
+  auto failKey = [&](const toml::key& k, const toml::node& v, const std::string& msg) {
+    const auto& s = k.source();
+    error = (s.begin ? shown + ":" + std::to_string(s.begin.line) + ":" + std::to_string(s.begin.column) : where(shown, v)) + ": error: " + msg;
+    return false;
+  };
   static const char* const topKeys[] = {"description", "duration", "cycles", "trace", "tolerance", "set", "fault", "check"};
   for (auto&& [k, v] : tbl) {
     if (std::find(std::begin(topKeys), std::end(topKeys), k.str()) == std::end(topKeys))
-      return fail(v, "unknown key '" + std::string(k.str()) + "' (expected description, duration, cycles, trace, tolerance, [[set]], [[fault]], [[check]])");
+      return failKey(k, v, "unknown key '" + std::string(k.str()) + "' (expected description, duration, cycles, trace, tolerance, [[set]], [[fault]], [[check]])");
   }
   if (const toml::node* d = tbl.get("duration")) {
     vm::Time t = 0;
@@ -165,7 +170,7 @@ bool loadScenario(const fs::path& path, const std::string& shown, Scenario& sc, 
   auto checkKeys = [&](const toml::table& t, std::initializer_list<const char*> keys, const char* what) {
     for (auto&& [k, v] : t)
       if (std::find_if(keys.begin(), keys.end(), [&](const char* s) { return k.str() == s; }) == keys.end())
-        return fail(v, "unknown key '" + std::string(k.str()) + "' in [[" + what + "]]");
+        return failKey(k, v, "unknown key '" + std::string(k.str()) + "' in [[" + what + "]]");
     return true;
   };
   const toml::array* arr = nullptr;
@@ -323,7 +328,7 @@ bool compareTraces(const std::string& expected, const std::string& actual, const
       double x, y;
       if (c > 0 && c - 1 < realColumn.size() && realColumn[c - 1] && numberOf(ev, x) && numberOf(av, y) && withinTolerance(y, x, tol)) continue;
       std::string name = c < names.size() ? names[c] : "column " + std::to_string(c + 1);
-      lines += fmt::format("  {}: expected {}, actual {}\n", name, ev, av);
+      lines += fmt::format("    {}: expected {}, actual {}\n", name, ev, av);
     }
     if (lines.empty()) continue;   // REAL values within the tolerance
     std::string time = !af.empty() ? af[0] : "?";
