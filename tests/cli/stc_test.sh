@@ -162,6 +162,15 @@ trace = ["MAIN.stat"]'
 at = "1ms"
 var = "MAIN.count"
 value = "many"'
+  scenario p bad_range 'cycles = 10
+[[set]]
+at = "1ms"
+var = "GVL.nLevel"
+value = "11"
+[[check]]
+at = "1ms"
+var = "MAIN.state"
+equals = "Running"'
   scenario p no_length 'trace = ["MAIN.state"]'
   scenario p no_axis 'cycles = 10
 [[fault]]
@@ -178,11 +187,13 @@ kind = "drive_error"'
   has "did you mean"
   has "FAIL p/bad_value"
   has "scenarios/bad_value.toml:2:1: error: MAIN.count: 'many' is not an integer literal"
+  has "GVL.nLevel: '11' is not in the subrange 0..10"
+  has "MAIN.state: 'Running' is not a value of E_State (E_State#Idle, E_State#Moving, E_State#Done, E_State#Failed)"
   has "FAIL p/no_length"
   has "scenarios/no_length.toml: error: the scenario needs duration"
   has "FAIL p/no_axis"
   has "no [[axis]] named 'Axis9'"
-  has "0 passed, 6 failed"
+  has "0 passed, 7 failed"
   # Not a project directory: exit 2.
   run 2 "$TMP/p/src"
   has "is not a project directory"
