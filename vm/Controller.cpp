@@ -146,9 +146,10 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   const codegen::ImageMap& im = module_->image;
   inputs_.resize(im.inputUsed);
   outputs_.resize(im.outputUsed);
-  if (im.inputUsed || im.outputUsed)
+  if (im.inputUsed || im.outputUsed || opts.beforeSlot)
     sched_->setSlotCallbacks(
-        [this, &im](uint32_t) {
+        [this, &im, &opts](uint32_t) {
+          if (opts.beforeSlot) opts.beforeSlot(sched_->now());
           if (!inputs_.empty()) std::memcpy(image_ + im.inputOffset, inputs_.data(), inputs_.size());
         },
         [this, &im](uint32_t) {
@@ -192,6 +193,13 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
         }
       }
       tw->sample(now, values);
+    };
+    sched_->setTickCallback(tickFn_);
+  }
+  if (opts.afterTick) {
+    tickFn_ = [trace = std::move(tickFn_), &opts](Time now) {
+      if (trace) trace(now);
+      opts.afterTick(now);
     };
     sched_->setTickCallback(tickFn_);
   }

@@ -37,6 +37,11 @@ struct RunOptions {
   std::string retainFile;                // RETAIN/PERSISTENT variables: restored at start, saved at stop
   std::optional<Time> retainEvery;       // also save every D of simulated time
   bool cold = false;                     // restore PERSISTENT variables only
+  // Scenarios (stc test, tools/stc/TestCommand.cpp): called before every task
+  // slot (before the inputs are copied in) and after every base tick (after
+  // the trace sample), with the tick's time.
+  std::function<void(Time now)> beforeSlot;
+  std::function<void(Time now)> afterTick;
 };
 
 class Controller {

@@ -436,3 +436,246 @@ bool resolvePath(const codegen::ImageMap& map, const sema::Layout& layout, const
 }
 
 }  // namespace stc::vm
+
+// ---------------------------------------------------------------- parseValue
+
+namespace stc::vm {
+
+namespace {
+
+std::string trimmed(std::string_view s) {
+  size_t b = 0, e = s.size();
+  while (b < e && (s[b] == ' ' || s[b] == '\t')) ++b;
+  while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t')) --e;
+  return std::string(s.substr(b, e - b));
+}
+
+// Drops a `PREFIX#` type prefix (INT#, REAL#, BOOL#, ...) when it names an
+// elementary type; keeps `16#`, `T#` and the like.
+std::string_view dropTypePrefix(std::string_view s) {
+  size_t hash = s.find('#');
+  if (hash == std::string_view::npos) return s;
+  static const char* const names[] = {"BOOL", "SINT", "INT", "DINT", "LINT", "USINT", "UINT", "UDINT", "ULINT", "BYTE",
+                                      "WORD", "DWORD", "LWORD", "REAL", "LREAL", "STRING", "WSTRING", "CHAR", "WCHAR"};
+  std::string head = asciiUpper(s.substr(0, hash));
+  for (const char* n : names)
+    if (head == n) return s.substr(hash + 1);
+  return s;
+}
+
+// An integer literal: [+-] digits, or base#digits (2, 8, 16), underscores allowed.
+bool parseIntText(std::string_view s, bool& negative, uint64_t& mag) {
+  negative = false;
+  if (!s.empty() && (s[0] == '-' || s[0] == '+')) {
+    negative = s[0] == '-';
+    s.remove_prefix(1);
+  }
+  unsigned base = 10;
+  if (size_t hash = s.find('#'); hash != std::string_view::npos) {
+    std::string b(s.substr(0, hash));
+    if (b == "2") base = 2;
+    else if (b == "8") base = 8;
+    else if (b == "16") base = 16;
+    else return false;
+    s.remove_prefix(hash + 1);
+  }
+  if (s.empty() || s[0] == '_') return false;
+  mag = 0;
+  bool any = false;
+  for (char c : s) {
+    if (c == '_') continue;
+    unsigned d;
+    if (c >= '0' && c <= '9') d = static_cast<unsigned>(c - '0');
+    else if (c >= 'a' && c <= 'f') d = static_cast<unsigned>(c - 'a' + 10);
+    else if (c >= 'A' && c <= 'F') d = static_cast<unsigned>(c - 'A' + 10);
+    else return false;
+    if (d >= base) return false;
+    if (mag > (UINT64_MAX - d) / base) return false;
+    mag = mag * base + d;
+    any = true;
+  }
+  return any;
+}
+
+void writeUnsigned(uint8_t* p, unsigned n, uint64_t v) {
+  for (unsigned i = 0; i < n; ++i) p[i] = static_cast<uint8_t>(v >> (8 * i));
+}
+
+// 'text' or "text" with $ escapes ($$, $', $", $L, $N, $P, $R, $T, $hh / $hhhh).
+bool parseQuoted(std::string_view s, char q, std::vector<uint32_t>& cps) {
+  if (s.size() < 2 || s.front() != q || s.back() != q) return false;
+  s = s.substr(1, s.size() - 2);
+  for (size_t i = 0; i < s.size();) {
+    auto c = static_cast<unsigned char>(s[i]);
+    if (c == '$') {
+      if (i + 1 >= s.size()) return false;
+      char e = asciiUpper(s[i + 1]);
+      if (e == '$' || e == '\'' || e == '"') cps.push_back(static_cast<unsigned char>(e)), i += 2;
+      else if (e == 'L' || e == 'N') cps.push_back('\n'), i += 2;
+      else if (e == 'P') cps.push_back('\f'), i += 2;
+      else if (e == 'R') cps.push_back('\r'), i += 2;
+      else if (e == 'T') cps.push_back('\t'), i += 2;
+      else {
+        size_t n = q == '"' ? 4 : 2;
+        if (i + 1 + n > s.size()) return false;
+        uint64_t v = 0;
+        bool neg = false;
+        if (!parseIntText("16#" + std::string(s.substr(i + 1, n)), neg, v)) return false;
+        cps.push_back(static_cast<uint32_t>(v));
+        i += 1 + n;
+      }
+      continue;
+    }
+    if (c == static_cast<unsigned char>(q)) return false;   // an unescaped quote inside
+    // UTF-8 decode.
+    uint32_t cp = c;
+    int n = c < 0x80 ? 0 : c >= 0xF0 ? 3 : c >= 0xE0 ? 2 : 1;
+    if (n) cp = c & (0x3F >> n);
+    ++i;
+    for (int k = 0; k < n && i < s.size(); ++k, ++i) cp = (cp << 6) | (static_cast<unsigned char>(s[i]) & 63);
+    cps.push_back(cp);
+  }
+  return true;
+}
+
+}  // namespace
+
+bool parseValue(std::string_view textIn, uint8_t* p, const Type* t0, const sema::Layout& layout, std::string& error) {
+  (void)layout;
+  const std::string text = trimmed(textIn);
+  const Type* t = strip(t0);
+  auto bad = [&](const std::string& what) {
+    error = "'" + text + "' is not " + what;
+    return false;
+  };
+  auto intoInteger = [&](const Type* it, std::string_view s, int64_t lo, int64_t hi, bool range) -> bool {
+    bool neg = false;
+    uint64_t mag = 0;
+    if (!parseIntText(dropTypePrefix(s), neg, mag)) return bad("an integer literal");
+    unsigned bytes = std::max(1u, it->bits() / 8);
+    if (it->isSignedInt()) {
+      unsigned bits = bytes * 8;
+      uint64_t limit = bits == 64 ? (1ull << 63) : (1ull << (bits - 1));
+      if (mag > limit - (neg ? 0 : 1)) return bad("in the range of " + it->name);
+      int64_t v = neg ? static_cast<int64_t>(0 - mag) : static_cast<int64_t>(mag);
+      if (range && (v < lo || v > hi)) return bad("in the subrange " + std::to_string(lo) + ".." + std::to_string(hi));
+      writeUnsigned(p, bytes, static_cast<uint64_t>(v));
+    } else {
+      if (neg && mag) return bad("in the range of " + it->name);
+      if (bytes < 8 && mag >> (bytes * 8)) return bad("in the range of " + it->name);
+      if (range && (static_cast<int64_t>(mag) < lo || static_cast<int64_t>(mag) > hi))
+        return bad("in the subrange " + std::to_string(lo) + ".." + std::to_string(hi));
+      writeUnsigned(p, bytes, mag);
+    }
+    return true;
+  };
+  if (t0 && t0->kind == TypeKind::Subrange && t->isInteger()) return intoInteger(t, text, t0->lo, t0->hi, true);
+  switch (t->kind) {
+    case TypeKind::Bool: case TypeKind::Bit: {
+      std::string u = asciiUpper(dropTypePrefix(text));
+      if (u == "TRUE" || u == "1") p[0] = 1;
+      else if (u == "FALSE" || u == "0") p[0] = 0;
+      else return bad("a BOOL literal (TRUE, FALSE)");
+      return true;
+    }
+    case TypeKind::SInt: case TypeKind::Int: case TypeKind::DInt: case TypeKind::LInt:
+    case TypeKind::USInt: case TypeKind::UInt: case TypeKind::UDInt: case TypeKind::ULInt:
+    case TypeKind::Byte: case TypeKind::Word: case TypeKind::DWord: case TypeKind::LWord:
+      return intoInteger(t, text, 0, 0, false);
+    case TypeKind::Real: case TypeKind::LReal: {
+      std::string s;
+      for (char c : dropTypePrefix(text))
+        if (c != '_') s.push_back(c);
+      if (s.empty()) return bad("a REAL literal");
+      double d = 0;
+      const char* b = s.data() + (s[0] == '+' ? 1 : 0);
+      auto [end, ec] = std::from_chars(b, s.data() + s.size(), d);
+      if (ec != std::errc() || end != s.data() + s.size()) return bad("a REAL literal");
+      if (t->kind == TypeKind::Real) {
+        float f = static_cast<float>(d);
+        std::memcpy(p, &f, 4);
+      } else {
+        std::memcpy(p, &d, 8);
+      }
+      return true;
+    }
+    case TypeKind::Time: case TypeKind::LTime: {
+      Time v = 0;
+      if (!parseIecDuration(text, v)) return bad("a duration (T#1s500ms, 250ms)");
+      writeUnsigned(p, 8, static_cast<uint64_t>(v));
+      return true;
+    }
+    case TypeKind::Date: case TypeKind::LDate: case TypeKind::Tod: case TypeKind::LTod: case TypeKind::DT: case TypeKind::LDT: {
+      char kind = t->kind == TypeKind::Date || t->kind == TypeKind::LDate ? 'D' : t->kind == TypeKind::Tod || t->kind == TypeKind::LTod ? 'T' : 'S';
+      int64_t v = 0;
+      if (!parseDateText(text, kind, v)) return bad("a " + t->name + " literal");
+      writeUnsigned(p, 8, static_cast<uint64_t>(v));
+      return true;
+    }
+    case TypeKind::String: case TypeKind::Char: {
+      std::vector<uint32_t> cps;
+      if (!parseQuoted(dropTypePrefix(text), '\'', cps)) return bad("a STRING literal ('text')");
+      std::string bytes;
+      for (uint32_t cp : cps) appendUtf8(bytes, cp);
+      if (t->kind == TypeKind::Char) {
+        if (cps.size() != 1 || cps[0] > 0xFF) return bad("one CHAR");
+        p[0] = static_cast<uint8_t>(cps[0]);
+        return true;
+      }
+      if (bytes.size() > t->length) return bad("at most " + std::to_string(t->length) + " bytes long");
+      std::memset(p, 0, t->length + 1);
+      std::memcpy(p, bytes.data(), bytes.size());
+      return true;
+    }
+    case TypeKind::WString: case TypeKind::WChar: {
+      std::vector<uint32_t> cps;
+      if (!parseQuoted(dropTypePrefix(text), '"', cps)) return bad("a WSTRING literal (\"text\")");
+      std::vector<uint16_t> units;
+      for (uint32_t cp : cps) {
+        if (cp >= 0x10000) {
+          units.push_back(static_cast<uint16_t>(0xD800 + ((cp - 0x10000) >> 10)));
+          units.push_back(static_cast<uint16_t>(0xDC00 + ((cp - 0x10000) & 0x3FF)));
+        } else {
+          units.push_back(static_cast<uint16_t>(cp));
+        }
+      }
+      if (t->kind == TypeKind::WChar) {
+        if (units.size() != 1) return bad("one WCHAR");
+        writeUnsigned(p, 2, units[0]);
+        return true;
+      }
+      if (units.size() > t->length) return bad("at most " + std::to_string(t->length) + " characters long");
+      std::memset(p, 0, 2 * (t->length + 1));
+      for (size_t i = 0; i < units.size(); ++i) writeUnsigned(p + 2 * i, 2, units[i]);
+      return true;
+    }
+    case TypeKind::Enum: {
+      std::string_view s = text;
+      if (size_t hash = s.find('#'); hash != std::string_view::npos) {
+        if (!equalsIgnoreCase(s.substr(0, hash), t->name)) return bad("a value of " + t->name);
+        s.remove_prefix(hash + 1);
+      }
+      const Type* base = t->element;
+      unsigned n = base ? base->bits() / 8 : 2;
+      for (auto& [name, val] : t->enumValues)
+        if (equalsIgnoreCase(s, name)) {
+          writeUnsigned(p, n, static_cast<uint64_t>(val));
+          return true;
+        }
+      bool neg = false;
+      uint64_t mag = 0;
+      if (parseIntText(s, neg, mag)) {
+        writeUnsigned(p, n, neg ? 0 - mag : mag);
+        return true;
+      }
+      std::string names;
+      for (auto& [name, val] : t->enumValues) names += (names.empty() ? "" : ", ") + t->name + "#" + name;
+      return bad("a value of " + t->name + " (" + names + ")");
+    }
+    default:
+      error = "values of type " + t->name + " cannot be given as a literal (only elementary types, enums and subranges)";
+      return false;
+  }
+}
+
+}  // namespace stc::vm

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "codegen/CodeGen.h"
 
@@ -26,6 +27,16 @@ bool resolvePath(const codegen::ImageMap& map, const sema::Layout& layout, const
 // The value at `p` as an IEC literal: TRUE, 42, 16#FF, 3.5, T#1s500ms,
 // 'text', Color#Red, [1, 2], (x := 1, y := 2).
 std::string formatValue(const uint8_t* p, const sema::Type* t, const sema::Layout& layout);
+
+// The inverse of formatValue for elementary types, enums and subranges:
+// parses the ST literal `text` as a value of type `t` and stores it at `p`
+// (the type's size; a BOOL is one byte).  Accepts TRUE/FALSE (also 1/0),
+// integers (16#FF, 2#1010, -5, 1_000, typed INT#5), REAL literals, durations
+// (T#1s500ms, 250ms), D#/TOD#/DT# dates, 'strings' / "wstrings" with $
+// escapes, Color#Red or Red (enums), and checks the range.  False with
+// `error` (nothing stored) otherwise.  Used by stc test (scenario stimuli
+// and checks).
+bool parseValue(std::string_view text, uint8_t* p, const sema::Type* t, const sema::Layout& layout, std::string& error);
 
 // Shortest round-trip text of a REAL/LREAL with a '.' or an exponent.
 std::string formatReal(double v, bool single);

@@ -17,6 +17,7 @@
 #include "vm/Time.h"
 #include "vm/testlib/TestLib.h"
 #include "stdlib-motion/MotionNatives.h"
+#include "tools/stc/TestCommand.h"
 
 using namespace stc;
 
@@ -301,8 +302,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("stc ") + STC_VERSION);
   app.require_subcommand(1);
   app.footer(
-      "Commands not listed here (test) are not implemented yet; see docs/status.md.\n"
-      "Exit status: 0 success, 1 errors in the input, 2 bad command line, 3 a runtime fault (run).");
+      "Exit status: 0 success, 1 errors in the input (test: a failed scenario), 2 bad command line, 3 a runtime fault (run).");
 
   CheckArgs ca;
   CLI::App* check = app.add_subcommand("check", "Parse and analyse ST sources or project directories");
@@ -344,6 +344,13 @@ int main(int argc, char** argv) {
   run->add_option("--retain-every", ra.retainEvery, "Also save the retain file every DUR of simulated time");
   run->add_flag("--cold", ra.cold, "Cold start: restore only PERSISTENT variables");
 
+  tools::TestArgs ta;
+  CLI::App* test = app.add_subcommand("test", "Run the scenarios of projects and compare them with their golden traces");
+  test->add_option("paths", ta.paths, "Project directories (default: .)");
+  test->add_flag("--update", ta.update, "Write the golden files expected/<scenario>.csv from this run");
+  test->add_option("-j,--jobs", ta.jobs, "Run N projects in parallel (default: one per core)");
+  test->add_option("--one", ta.one, "Run one project in this process (used by the parallel runner)")->group("");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -358,5 +365,6 @@ int main(int argc, char** argv) {
   if (build->parsed()) return runBuild(ba);
   ra.cyclesGiven = cyc->count() > 0;
   if (run->parsed()) return runRun(ra);
+  if (test->parsed()) return tools::runTest(ta);
   return 2;
 }

@@ -1,0 +1,848 @@
+// `stc test` (docs/projects.md, "Scenarios and golden traces").
+//
+// The parent process validates the project directories and starts one child
+// (`/proc/self/exe test --one DIR`) per project, at most -j at a time: the
+// motion kernel is a process-wide singleton, so two projects never share a
+// process.  A child writes its report to a temporary file; the parent prints
+// the reports whole, in argument order, and counts their PASS/FAIL lines.
+// Inside a project the sources are parsed and checked once; each scenario
+// gets fresh generated code, a fresh controller and a fresh motion kernel.
+#include "tools/stc/TestCommand.h"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <toml++/toml.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "basic/Text.h"
+#include "codegen/CodeGen.h"
+#include "driver/Driver.h"
+#include "sema/Layout.h"
+#include "sema/Model.h"
+#include "sema/Types.h"
+#include "stdlib-motion/MotionNatives.h"
+#include "vm/Controller.h"
+#include "vm/Image.h"
+#include "vm/Time.h"
+#include "vm/testlib/TestLib.h"
+
+namespace fs = std::filesystem;
+
+namespace stc::tools {
+
+namespace {
+
+// ---------------------------------------------------------------- scenario files
+
+struct Located {
+  std::string where;   // "scenarios/x.toml:12:1"
+};
+
+struct SetStep : Located {
+  vm::Time at = 0;
+  std::string var, value;
+};
+
+struct FaultStep : Located {
+  vm::Time at = 0;
+  std::string axis;
+  motion::FaultKind kind = motion::FaultKind::DriveError;
+};
+
+struct Check : Located {
+  enum Kind { Equals, Rises, Bounds } kind = Equals;
+  std::string var;
+  vm::Time at = 0, from = 0, to = 0;
+  std::string equals;
+  std::optional<double> min, max;
+};
+
+struct Scenario {
+  std::string name, file;      // file: as printed (scenarios/x.toml)
+  std::optional<vm::Time> duration;
+  std::optional<uint64_t> cycles;
+  std::vector<std::string> trace;
+  double tolerance = 1e-9;
+  std::vector<SetStep> sets;
+  std::vector<FaultStep> faults;
+  std::vector<Check> checks;
+};
+
+std::string where(const std::string& file, const toml::node& n) {
+  const auto& s = n.source();
+  if (!s.begin) return file;
+  return file + ":" + std::to_string(s.begin.line) + ":" + std::to_string(s.begin.column);
+}
+
+// An ST literal given as a TOML string, or as a TOML boolean / number.
+bool literalText(const toml::node* n, std::string& out) {
+  if (!n) return false;
+  if (auto s = n->value_exact<std::string>()) out = *s;
+  else if (auto b = n->value_exact<bool>()) out = *b ? "TRUE" : "FALSE";
+  else if (auto i = n->value_exact<int64_t>()) out = std::to_string(*i);
+  else if (auto d = n->value_exact<double>()) out = vm::formatReal(*d, false);
+  else return false;
+  return true;
+}
+
+bool durationOf(const toml::node* n, vm::Time& out) {
+  if (!n) return false;
+  auto s = n->value_exact<std::string>();
+  return s && vm::parseIecDuration(*s, out) && out >= 0;
+}
+
+// Parses and validates one scenario file (variables are resolved later).
+bool loadScenario(const fs::path& path, const std::string& shown, Scenario& sc, std::string& error) {
+  sc.file = shown;
+  sc.name = path.stem().string();
+  toml::table tbl;
+  try {
+    tbl = toml::parse_file(path.string());
+  } catch (const toml::parse_error& e) {
+    const auto& s = e.source();
+    error = shown + (s.begin ? ":" + std::to_string(s.begin.line) + ":" + std::to_string(s.begin.column) : std::string()) + ": error: " +
+            std::string(e.description());
+    return false;
+  }
+  auto fail = [&](const toml::node& n, const std::string& msg) {
+    error = where(shown, n) + ": error: " + msg;
+    return false;
+  };
+  auto failKey = [&](const toml::key& k, const toml::node& v, const std::string& msg) {
+    const auto& s = k.source();
+    error = (s.begin ? shown + ":" + std::to_string(s.begin.line) + ":" + std::to_string(s.begin.column) : where(shown, v)) + ": error: " + msg;
+    return false;
+  };
+  static const char* const topKeys[] = {"description", "duration", "cycles", "trace", "tolerance", "set", "fault", "check"};
+  for (auto&& [k, v] : tbl) {
+    if (std::find(std::begin(topKeys), std::end(topKeys), k.str()) == std::end(topKeys))
+      return failKey(k, v, "unknown key '" + std::string(k.str()) + "' (expected description, duration, cycles, trace, tolerance, [[set]], [[fault]], [[check]])");
+  }
+  if (const toml::node* d = tbl.get("duration")) {
+    vm::Time t = 0;
+    if (!durationOf(d, t) || t == 0) return fail(*d, "duration must be a positive duration string, e.g. \"3s\" or \"T#500ms\"");
+    sc.duration = t;
+  }
+  if (const toml::node* c = tbl.get("cycles")) {
+    auto n = c->value_exact<int64_t>();
+    if (!n || *n <= 0) return fail(*c, "cycles must be a positive integer");
+    sc.cycles = static_cast<uint64_t>(*n);
+  }
+  if (sc.duration && sc.cycles) return fail(*tbl.get("cycles"), "give either duration or cycles, not both");
+  if (!sc.duration && !sc.cycles) {
+    error = shown + ": error: the scenario needs duration = \"<time>\" or cycles = N";
+    return false;
+  }
+  if (const toml::node* tr = tbl.get("trace")) {
+    const toml::array* a = tr->as_array();
+    if (!a) return fail(*tr, "trace must be an array of variable names");
+    for (const toml::node& e : *a) {
+      auto s = e.value_exact<std::string>();
+      if (!s || s->empty()) return fail(e, "trace must be an array of variable names");
+      sc.trace.push_back(*s);
+    }
+  }
+  if (const toml::node* tol = tbl.get("tolerance")) {
+    auto d = tol->value<double>();
+    if (!d || !(*d >= 0)) return fail(*tol, "tolerance must be a number >= 0");
+    sc.tolerance = *d;
+  }
+  auto tables = [&](const char* key, const toml::array*& out) {
+    out = nullptr;
+    const toml::node* n = tbl.get(key);
+    if (!n) return true;
+    out = n->as_array();
+    if (!out || !out->is_array_of_tables()) return fail(*n, std::string("'") + key + "' must be an array of tables ([[" + key + "]])");
+    return true;
+  };
+  auto checkKeys = [&](const toml::table& t, std::initializer_list<const char*> keys, const char* what) {
+    for (auto&& [k, v] : t)
+      if (std::find_if(keys.begin(), keys.end(), [&](const char* s) { return k.str() == s; }) == keys.end())
+        return failKey(k, v, "unknown key '" + std::string(k.str()) + "' in [[" + what + "]]");
+    return true;
+  };
+  const toml::array* arr = nullptr;
+  if (!tables("set", arr)) return false;
+  if (arr)
+    for (const toml::node& n : *arr) {
+      const toml::table& t = *n.as_table();
+      if (!checkKeys(t, {"at", "var", "value"}, "set")) return false;
+      SetStep s;
+      s.where = where(shown, n);
+      auto var = t["var"].value_exact<std::string>();
+      if (!durationOf(t.get("at"), s.at) || !var || !literalText(t.get("value"), s.value))
+        return fail(n, "a [[set]] needs at = \"<duration>\", var = \"NAME\" and value = \"<ST literal>\"");
+      s.var = *var;
+      sc.sets.push_back(std::move(s));
+    }
+  if (!tables("fault", arr)) return false;
+  if (arr)
+    for (const toml::node& n : *arr) {
+      const toml::table& t = *n.as_table();
+      if (!checkKeys(t, {"at", "axis", "kind"}, "fault")) return false;
+      FaultStep f;
+      f.where = where(shown, n);
+      static const std::pair<const char*, motion::FaultKind> kinds[] = {
+          {"drive_error", motion::FaultKind::DriveError}, {"communication_lost", motion::FaultKind::CommunicationLost},
+          {"communication_restored", motion::FaultKind::CommunicationRestored}, {"limit_positive", motion::FaultKind::LimitPositive},
+          {"limit_negative", motion::FaultKind::LimitNegative}, {"limits_released", motion::FaultKind::LimitsReleased}};
+      auto axis = t["axis"].value_exact<std::string>();
+      auto kind = t["kind"].value_exact<std::string>();
+      auto k = std::find_if(std::begin(kinds), std::end(kinds), [&](auto& p) { return kind && *kind == p.first; });
+      if (!durationOf(t.get("at"), f.at) || !axis || k == std::end(kinds))
+        return fail(n, "a [[fault]] needs at = \"<duration>\", axis = \"NAME\" and kind = drive_error, communication_lost, "
+                       "communication_restored, limit_positive, limit_negative or limits_released");
+      f.axis = *axis;
+      f.kind = k->second;
+      sc.faults.push_back(std::move(f));
+    }
+  if (!tables("check", arr)) return false;
+  if (arr)
+    for (const toml::node& n : *arr) {
+      const toml::table& t = *n.as_table();
+      if (!checkKeys(t, {"at", "var", "equals", "rises_between", "min", "max"}, "check")) return false;
+      Check c;
+      c.where = where(shown, n);
+      auto var = t["var"].value_exact<std::string>();
+      if (!var) return fail(n, "a [[check]] needs var = \"NAME\"");
+      c.var = *var;
+      int kinds = (t.get("equals") ? 1 : 0) + (t.get("rises_between") ? 1 : 0) + ((t.get("min") || t.get("max")) ? 1 : 0);
+      if (kinds != 1) return fail(n, "a [[check]] has exactly one of: equals (with at), rises_between, min/max");
+      if (t.get("equals")) {
+        c.kind = Check::Equals;
+        if (!literalText(t.get("equals"), c.equals) || !durationOf(t.get("at"), c.at))
+          return fail(n, "an equals check needs at = \"<duration>\" and equals = \"<ST literal>\"");
+      } else if (const toml::node* rb = t.get("rises_between")) {
+        c.kind = Check::Rises;
+        const toml::array* a = rb->as_array();
+        if (t.get("at") || !a || a->size() != 2 || !durationOf(a->get(0), c.from) || !durationOf(a->get(1), c.to) || c.to < c.from)
+          return fail(n, "rises_between must be [\"T1\", \"T2\"] with T1 <= T2 (and no at)");
+      } else {
+        c.kind = Check::Bounds;
+        if (t.get("at")) return fail(n, "a min/max check holds over the whole run; it has no at");
+        for (const char* key : {"min", "max"})
+          if (const toml::node* b = t.get(key)) {
+            auto d = b->value<double>();
+            if (!d) return fail(*b, std::string(key) + " must be a number");
+            (std::string(key) == "min" ? c.min : c.max) = *d;
+          }
+      }
+      sc.checks.push_back(std::move(c));
+    }
+  std::stable_sort(sc.sets.begin(), sc.sets.end(), [](const SetStep& a, const SetStep& b) { return a.at < b.at; });
+  return true;
+}
+
+// ---------------------------------------------------------------- CSV
+
+std::vector<std::string> splitCsvLine(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
+      else if (c == '"') quoted = false;
+      else cur += c;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.push_back(std::move(cur));
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  out.push_back(std::move(cur));
+  return out;
+}
+
+std::vector<std::string> splitLines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    out.push_back(line);
+  }
+  return out;
+}
+
+bool readFile(const fs::path& p, std::string& out) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream s;
+  s << in.rdbuf();
+  out = s.str();
+  return true;
+}
+
+bool numberOf(const std::string& s, double& v) {
+  if (s.empty()) return false;
+  char* end = nullptr;
+  v = std::strtod(s.c_str(), &end);
+  return end && *end == 0;
+}
+
+bool withinTolerance(double a, double e, double tol) {
+  if (std::isnan(a) || std::isnan(e)) return std::isnan(a) && std::isnan(e);
+  if (a == e) return true;
+  return std::fabs(a - e) <= tol * std::max(1.0, std::fabs(e));
+}
+
+std::string secondsText(const std::string& csvTime) {
+  vm::Time t = 0;
+  return vm::parseIecDuration(csvTime + "s", t) ? vm::formatIecTime(t) : csvTime + " s";
+}
+
+// Compares the run's CSV with the golden one; appends the first difference.
+bool compareTraces(const std::string& expected, const std::string& actual, const std::vector<bool>& realColumn, double tol,
+                   std::string& report) {
+  std::vector<std::string> e = splitLines(expected), a = splitLines(actual);
+  if (e.empty() || a.empty() || e[0] != a[0]) {
+    report += fmt::format("  trace columns differ: expected '{}', actual '{}'\n", e.empty() ? "" : e[0], a.empty() ? "" : a[0]);
+    return false;
+  }
+  std::vector<std::string> names = splitCsvLine(a[0]);
+  size_t rows = std::min(e.size(), a.size());
+  for (size_t r = 1; r < rows; ++r) {
+    if (e[r] == a[r]) continue;
+    std::vector<std::string> ef = splitCsvLine(e[r]), af = splitCsvLine(a[r]);
+    std::string lines;
+    for (size_t c = 0; c < std::max(ef.size(), af.size()); ++c) {
+      std::string ev = c < ef.size() ? ef[c] : "(missing)", av = c < af.size() ? af[c] : "(missing)";
+      if (ev == av) continue;
+      double x, y;
+      if (c > 0 && c - 1 < realColumn.size() && realColumn[c - 1] && numberOf(ev, x) && numberOf(av, y) && withinTolerance(y, x, tol)) continue;
+      std::string name = c < names.size() ? names[c] : "column " + std::to_string(c + 1);
+      lines += fmt::format("    {}: expected {}, actual {}\n", name, ev, av);
+    }
+    if (lines.empty()) continue;   // REAL values within the tolerance
+    std::string time = !af.empty() ? af[0] : "?";
+    report += fmt::format("  first difference at cycle {} (time {}):\n{}", r, secondsText(time), lines);
+    return false;
+  }
+  if (e.size() != a.size()) {
+    report += fmt::format("  the trace has {} rows, expected {}\n", a.size() - 1, e.size() - 1);
+    return false;
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------- one project
+
+struct ProjectRun {
+  std::string dir;        // as given
+  std::string label;      // directory name, printed before /scenario
+  bool update = false;
+  std::string out;
+  unsigned passed = 0, failed = 0;
+};
+
+// A resolved variable, its text and its numeric value (if it has one).
+struct Probe {
+  vm::ValueRef ref;
+  const sema::Type* type = nullptr;   // without subrange
+  bool isReal = false, isNumeric = false, isBool = false;
+};
+
+bool makeProbe(vm::Controller& ctl, const sema::Layout& layout, const std::string& var, Probe& p, std::string& err) {
+  if (!vm::resolvePath(ctl.imageMap(), layout, var, p.ref, err)) return false;
+  const sema::Type* t = p.ref.type;
+  while (t->kind == sema::TypeKind::Subrange && t->element) t = t->element;
+  p.type = t;
+  const sema::Type* u = t->underlying();
+  p.isBool = p.ref.bit >= 0 || u->isBool();
+  p.isReal = u->isReal();
+  p.isNumeric = !p.isBool && (u->isInteger() || u->isBitString() || u->isReal());
+  return true;
+}
+
+double numericValue(const vm::Controller& ctl, const Probe& p) {
+  const uint8_t* q = ctl.image() + p.ref.offset;
+  const sema::Type* u = p.type->underlying();
+  if (u->kind == sema::TypeKind::Real) { float f; std::memcpy(&f, q, 4); return f; }
+  if (u->kind == sema::TypeKind::LReal) { double d; std::memcpy(&d, q, 8); return d; }
+  unsigned n = std::max(1u, u->bits() / 8);
+  uint64_t v = 0;
+  std::memcpy(&v, q, n);
+  if (u->isSignedInt() && n < 8 && (v >> (8 * n - 1)) & 1) v |= ~0ull << (8 * n);
+  return u->isSignedInt() ? static_cast<double>(static_cast<int64_t>(v)) : static_cast<double>(v);
+}
+
+bool boolValue(const vm::Controller& ctl, const Probe& p) {
+  const uint8_t* q = ctl.image() + p.ref.offset;
+  return p.ref.bit >= 0 ? ((*q >> p.ref.bit) & 1) : *q != 0;
+}
+
+std::string numText(double v) { return vm::formatReal(v, false); }
+
+struct CheckState {
+  const Check* c;
+  Probe probe;
+  std::vector<uint8_t> expected;      // Equals: the parsed literal
+  std::string expectedText;
+  double expectedReal = 0;
+  bool seen = false;                  // Equals: a sample at or before `at`
+  std::string actualText;
+  double actualReal = 0;
+  bool prev = false;                  // Rises
+  std::optional<vm::Time> riseIn, riseAny;
+  double lo = 0, hi = 0;              // Bounds
+  vm::Time loAt = 0, hiAt = 0;
+  bool any = false;
+};
+
+class TempFile {
+public:
+  TempFile() {
+    const char* dir = std::getenv("TMPDIR");
+    std::string tmpl = std::string(dir && *dir ? dir : "/tmp") + "/stc-test-XXXXXX.csv";
+    std::vector<char> buf(tmpl.begin(), tmpl.end());
+    buf.push_back(0);
+    int fd = mkstemps(buf.data(), 4);
+    if (fd >= 0) {
+      close(fd);
+      path_ = buf.data();
+    }
+  }
+  ~TempFile() {
+    if (!path_.empty()) unlink(path_.c_str());
+  }
+  const std::string& path() const { return path_; }
+
+private:
+  std::string path_;
+};
+
+// Runs one scenario; appends the failure lines to `report`.
+bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::string& report) {
+  // The axes, with the scenario's faults added.
+  std::vector<motion::AxisConfig> axes;
+  std::string err;
+  if (!motion::loadProjectAxes(pr.dir, axes, err)) {
+    report += "  " + err + "\n";
+    return false;
+  }
+  for (const FaultStep& f : sc.faults) {
+    auto ax = std::find_if(axes.begin(), axes.end(), [&](const motion::AxisConfig& a) { return equalsIgnoreCase(a.name, f.axis); });
+    if (ax == axes.end()) {
+      report += "  " + f.where + ": error: no [[axis]] named '" + f.axis + "' in project.toml\n";
+      return false;
+    }
+    motion::FaultEvent ev;
+    ev.atNs = f.at;
+    ev.kind = f.kind;
+    ax->drive.faults.push_back(ev);
+    std::stable_sort(ax->drive.faults.begin(), ax->drive.faults.end(),
+                     [](const motion::FaultEvent& a, const motion::FaultEvent& b) { return a.atNs < b.atNs; });
+  }
+  motion::setProjectAxes(std::move(axes));
+
+  codegen::CodegenOptions o;
+  o.optLevel = 1;   // as stc run
+  o.checks = true;
+  std::unique_ptr<codegen::CompiledModule> m;
+  size_t before = comp.diags().diagnostics().size();
+  runWithLargeStack([&] { m = codegen::generate(*comp.model(), comp.sources(), comp.diags(), o, true); });
+  auto diagText = [&](size_t from) {
+    std::string s;
+    const auto& d = comp.diags().diagnostics();
+    for (size_t i = from; i < d.size(); ++i) s += renderText(comp.sources(), d[i]);
+    return s;
+  };
+  if (!m) {
+    report += diagText(before);
+    return false;
+  }
+  vm::Controller ctl(*comp.model(), comp.diags());
+  if (!ctl.load(std::move(m), err)) {
+    report += "  error: " + err + "\n";
+    return false;
+  }
+  const sema::Layout& layout = *comp.model()->layout;
+
+  // Stimuli: resolved and parsed before the run.
+  struct Stim {
+    vm::ValueRef ref;
+    std::vector<uint8_t> bytes;
+    vm::Time at;
+  };
+  std::vector<Stim> stims;
+  bool ok = true;
+  for (const SetStep& s : sc.sets) {
+    Probe p;
+    if (!makeProbe(ctl, layout, s.var, p, err)) {
+      report += "  " + s.where + ": error: " + s.var + ": " + err + "\n";
+      ok = false;
+      continue;
+    }
+    Stim st{p.ref, std::vector<uint8_t>(std::max<uint64_t>(1, layout.sizeOf(p.ref.type))), s.at};
+    if (!vm::parseValue(s.value, st.bytes.data(), p.ref.type, layout, err)) {
+      report += "  " + s.where + ": error: " + s.var + ": " + err + "\n";
+      ok = false;
+      continue;
+    }
+    stims.push_back(std::move(st));
+  }
+  std::vector<CheckState> checks;
+  for (const Check& c : sc.checks) {
+    CheckState cs{&c, {}, {}, {}, 0, false, {}, 0, false, {}, {}, 0, 0, 0, 0, false};
+    if (!makeProbe(ctl, layout, c.var, cs.probe, err)) {
+      report += "  " + c.where + ": error: " + c.var + ": " + err + "\n";
+      ok = false;
+      continue;
+    }
+    if (c.kind == Check::Equals) {
+      cs.expected.resize(std::max<uint64_t>(1, layout.sizeOf(cs.probe.ref.type)));
+      if (!vm::parseValue(c.equals, cs.expected.data(), cs.probe.ref.type, layout, err)) {
+        report += "  " + c.where + ": error: " + c.var + ": " + err + "\n";
+        ok = false;
+        continue;
+      }
+      cs.expectedText = cs.probe.ref.bit >= 0 ? (cs.expected[0] ? "TRUE" : "FALSE") : vm::formatValue(cs.expected.data(), cs.probe.ref.type, layout);
+      if (cs.probe.isReal) numberOf(cs.expectedText, cs.expectedReal);
+    } else if (c.kind == Check::Rises && !cs.probe.isBool) {
+      report += "  " + c.where + ": error: rises_between needs a BOOL; " + c.var + " is " + cs.probe.type->name + "\n";
+      ok = false;
+      continue;
+    } else if (c.kind == Check::Bounds && !cs.probe.isNumeric) {
+      report += "  " + c.where + ": error: min/max need a number; " + c.var + " is " + cs.probe.type->name + "\n";
+      ok = false;
+      continue;
+    }
+    checks.push_back(std::move(cs));
+  }
+  std::vector<bool> realColumn;
+  for (const std::string& v : sc.trace) {
+    Probe p;
+    if (!makeProbe(ctl, layout, v, p, err)) {
+      report += "  " + sc.file + ": error: trace " + v + ": " + err + "\n";
+      ok = false;
+      continue;
+    }
+    realColumn.push_back(p.isReal);
+  }
+  if (!ok) return false;
+
+  for (CheckState& cs : checks)
+    if (cs.c->kind == Check::Rises) cs.prev = boolValue(ctl, cs.probe);
+
+  vm::RunOptions ro;
+  ro.cycles = sc.cycles;
+  ro.duration = sc.duration;
+  ro.traces = sc.trace;
+  TempFile tmp;
+  if (!sc.trace.empty() && tmp.path().empty()) {
+    report += "  error: cannot create a temporary file\n";
+    return false;
+  }
+  ro.traceOut = tmp.path();
+  size_t nextStim = 0;
+  const codegen::ImageMap& im = ctl.imageMap();
+  ro.beforeSlot = [&](vm::Time now) {
+    for (; nextStim < stims.size() && stims[nextStim].at <= now; ++nextStim) {
+      const Stim& s = stims[nextStim];
+      uint8_t* q = ctl.image() + s.ref.offset;
+      if (s.ref.bit >= 0) *q = static_cast<uint8_t>((*q & ~(1u << s.ref.bit)) | ((s.bytes[0] ? 1u : 0u) << s.ref.bit));
+      else std::memcpy(q, s.bytes.data(), s.bytes.size());
+      // A variable in %I: the external inputs are copied over it before the slot.
+      uint64_t n = s.ref.bit >= 0 ? 1 : s.bytes.size();
+      if (s.ref.offset >= im.inputOffset && s.ref.offset + n <= im.inputOffset + ctl.inputs().size())
+        std::memcpy(ctl.inputs().data() + (s.ref.offset - im.inputOffset), q, n);
+    }
+  };
+  vm::Time lastTick = -1;
+  ro.afterTick = [&](vm::Time now) {
+    lastTick = now;
+    for (CheckState& cs : checks) {
+      const Check& c = *cs.c;
+      switch (c.kind) {
+        case Check::Equals:
+          if (now <= c.at) {
+            cs.seen = true;
+            cs.actualText = ctl.valueText(cs.probe.ref);
+            if (cs.probe.isReal) cs.actualReal = numericValue(ctl, cs.probe);
+          }
+          break;
+        case Check::Rises: {
+          bool v = boolValue(ctl, cs.probe);
+          if (v && !cs.prev) {
+            if (!cs.riseAny) cs.riseAny = now;
+            if (!cs.riseIn && now >= c.from && now <= c.to) cs.riseIn = now;
+          }
+          cs.prev = v;
+          break;
+        }
+        case Check::Bounds: {
+          double v = numericValue(ctl, cs.probe);
+          if (!cs.any || v < cs.lo) cs.lo = v, cs.loAt = now;
+          if (!cs.any || v > cs.hi) cs.hi = v, cs.hiAt = now;
+          cs.any = true;
+          break;
+        }
+      }
+    }
+  };
+  std::ostringstream out, errs;
+  size_t beforeRun = comp.diags().diagnostics().size();
+  int rc = ctl.run(ro, out, errs);
+  bool pass = true;
+  if (rc != 0) {
+    std::string e = errs.str() + diagText(beforeRun);
+    for (const std::string& line : splitLines(e)) report += "  " + line + "\n";
+    pass = false;
+  }
+
+  // The checks.
+  for (const CheckState& cs : checks) {
+    const Check& c = *cs.c;
+    switch (c.kind) {
+      case Check::Equals: {
+        std::string head = fmt::format("  check {} = {} at {} ({})", c.var, c.equals, vm::formatIecTime(c.at), c.where);
+        if (c.at > lastTick) {
+          report += head + ": the run ends at " + vm::formatIecTime(lastTick) + ", before that time\n";
+          pass = false;
+        } else if (!cs.seen || (cs.probe.isReal ? !withinTolerance(cs.actualReal, cs.expectedReal, sc.tolerance) : cs.actualText != cs.expectedText)) {
+          report += head + ": actual " + cs.actualText + "\n";
+          pass = false;
+        }
+        break;
+      }
+      case Check::Rises:
+        if (!cs.riseIn) {
+          std::string why = cs.riseAny ? "it first rises at " + vm::formatIecTime(*cs.riseAny)
+                                       : std::string("it never rises (") + (cs.prev ? "TRUE" : "FALSE") + " at the end)";
+          report += fmt::format("  check {} rises between {} and {} ({}): {}\n", c.var, vm::formatIecTime(c.from), vm::formatIecTime(c.to), c.where, why);
+          pass = false;
+        }
+        break;
+      case Check::Bounds:
+        if (c.min && cs.any && cs.lo < *c.min) {
+          report += fmt::format("  check {} >= {} ({}): actual minimum {} at {}\n", c.var, numText(*c.min), c.where, numText(cs.lo), vm::formatIecTime(cs.loAt));
+          pass = false;
+        }
+        if (c.max && cs.any && cs.hi > *c.max) {
+          report += fmt::format("  check {} <= {} ({}): actual maximum {} at {}\n", c.var, numText(*c.max), c.where, numText(cs.hi), vm::formatIecTime(cs.hiAt));
+          pass = false;
+        }
+        break;
+    }
+  }
+
+  // The golden trace.
+  if (!sc.trace.empty()) {
+    std::string actual;
+    if (!readFile(tmp.path(), actual)) {
+      report += "  error: cannot read the trace '" + tmp.path() + "'\n";
+      return false;
+    }
+    fs::path golden = fs::path(pr.dir) / "expected" / (sc.name + ".csv");
+    if (pr.update) {
+      std::error_code ec;
+      fs::create_directories(golden.parent_path(), ec);
+      std::ofstream f(golden, std::ios::binary | std::ios::trunc);
+      f << actual;
+      f.close();
+      if (!f) {
+        report += "  error: cannot write '" + golden.string() + "'\n";
+        pass = false;
+      }
+    } else {
+      std::string expected;
+      if (!readFile(golden, expected)) {
+        report += "  no expected/" + sc.name + ".csv; run stc test --update\n";
+        pass = false;
+      } else if (!compareTraces(expected, actual, realColumn, sc.tolerance, report)) {
+        pass = false;
+      }
+    }
+  }
+  return pass;
+}
+
+std::string label(const std::string& dir) {
+  std::error_code ec;
+  fs::path p = fs::weakly_canonical(fs::absolute(dir), ec);
+  std::string name = p.filename().string();
+  return name.empty() ? dir : name;
+}
+
+void runProject(ProjectRun& pr) {
+  fs::path scenDir = fs::path(pr.dir) / "scenarios";
+  std::vector<fs::path> files;
+  std::error_code ec;
+  if (fs::is_directory(scenDir, ec))
+    for (const auto& e : fs::directory_iterator(scenDir, ec))
+      if (e.path().extension() == ".toml" && e.is_regular_file(ec)) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  if (files.empty()) return;
+
+  Compilation comp;
+  bool compiled = false;
+  std::string compileErrors;
+  {
+    bool inputsOk = comp.addPath(pr.dir);
+    vm::registerTestLib();
+    CompileOptions co;
+    bool ok = false;
+    if (inputsOk) runWithLargeStack([&] { ok = comp.check(co); });
+    compiled = ok && inputsOk && comp.model() && !comp.diags().hasErrors();
+    if (!compiled)
+      for (const Diagnostic& d : comp.diags().diagnostics()) compileErrors += renderText(comp.sources(), d);
+  }
+  for (const fs::path& f : files) {
+    auto t0 = std::chrono::steady_clock::now();
+    Scenario sc;
+    std::string report, err;
+    bool pass = false;
+    std::string shown = "scenarios/" + f.filename().string();
+    if (!loadScenario(f, shown, sc, err)) {
+      report = "  " + err + "\n";
+      sc.name = f.stem().string();
+    } else if (!compiled) {
+      report = "  the project does not compile:\n";
+      for (const std::string& line : splitLines(compileErrors)) report += "  " + line + "\n";
+    } else {
+      pass = runScenario(pr, comp, sc, report);
+    }
+    double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    pr.out += fmt::format("{} {}/{} ({:.2f} s){}\n", pass ? "PASS" : "FAIL", pr.label, sc.name, secs,
+                          pass && pr.update && !sc.trace.empty() ? ", expected/" + sc.name + ".csv written" : "");
+    pr.out += report;
+    ++(pass ? pr.passed : pr.failed);
+  }
+}
+
+// ---------------------------------------------------------------- processes
+
+struct Child {
+  pid_t pid = -1;
+  std::string outFile;
+  bool done = false;
+  int status = 0;
+};
+
+}  // namespace
+
+int runTest(const TestArgs& args) {
+  if (!args.one.empty()) {
+    // A child: one project, the report on stdout.
+    ProjectRun pr;
+    pr.dir = args.one;
+    pr.label = label(args.one);
+    pr.update = args.update;
+    runProject(pr);
+    std::fwrite(pr.out.data(), 1, pr.out.size(), stdout);
+    std::fflush(stdout);
+    return pr.failed ? 1 : 0;
+  }
+  std::vector<std::string> dirs = args.paths.empty() ? std::vector<std::string>{"."} : args.paths;
+  for (const std::string& d : dirs) {
+    std::error_code ec;
+    if (!fs::is_directory(d, ec) || !fs::is_regular_file(fs::path(d) / "project.toml", ec)) {
+      std::fprintf(stderr, "stc: error: '%s' is not a project directory (no project.toml)\n", d.c_str());
+      return 2;
+    }
+  }
+  unsigned jobs = args.jobs ? args.jobs : std::max(1u, static_cast<unsigned>(sysconf(_SC_NPROCESSORS_ONLN)));
+  std::vector<Child> kids(dirs.size());
+  unsigned passed = 0, failed = 0;
+  size_t started = 0, printed = 0, running = 0;
+  std::fflush(stdout);
+  std::fflush(stderr);
+  while (printed < dirs.size()) {
+    while (running < jobs && started < dirs.size()) {
+      Child& k = kids[started];
+      const char* tdir = std::getenv("TMPDIR");
+      std::string t = std::string(tdir && *tdir ? tdir : "/tmp") + "/stc-test-out-XXXXXX";
+      std::vector<char> buf(t.begin(), t.end());
+      buf.push_back(0);
+      int fd = mkstemp(buf.data());
+      if (fd < 0) {
+        std::fprintf(stderr, "stc: error: cannot create a temporary file: %s\n", std::strerror(errno));
+        return 1;
+      }
+      k.outFile = buf.data();
+      std::vector<std::string> argvS = {"stc", "test", "--one", dirs[started]};
+      if (args.update) argvS.push_back("--update");
+      pid_t pid = fork();
+      if (pid == 0) {
+        dup2(fd, STDOUT_FILENO);
+        dup2(fd, STDERR_FILENO);
+        close(fd);
+        std::vector<char*> argv;
+        for (std::string& s : argvS) argv.push_back(s.data());
+        argv.push_back(nullptr);
+        execv("/proc/self/exe", argv.data());
+        std::fprintf(stderr, "stc: error: cannot start /proc/self/exe: %s\n", std::strerror(errno));
+        _exit(127);
+      }
+      close(fd);
+      if (pid < 0) {
+        std::fprintf(stderr, "stc: error: fork: %s\n", std::strerror(errno));
+        return 1;
+      }
+      k.pid = pid;
+      ++started;
+      ++running;
+    }
+    // Print every finished report that is next in argument order.
+    while (printed < started && kids[printed].done) {
+      Child& k = kids[printed];
+      std::string text;
+      readFile(k.outFile, text);
+      unlink(k.outFile.c_str());
+      unsigned p = 0, f = 0;
+      for (const std::string& line : splitLines(text)) {
+        if (line.rfind("PASS ", 0) == 0) ++p;
+        else if (line.rfind("FAIL ", 0) == 0) ++f;
+      }
+      bool crashed = !WIFEXITED(k.status) || (WEXITSTATUS(k.status) != 0 && WEXITSTATUS(k.status) != 1) ||
+                     (WEXITSTATUS(k.status) == 1 && f == 0);
+      if (crashed) {
+        text += WIFSIGNALED(k.status) ? fmt::format("FAIL {}: the test process died (signal {})\n", label(dirs[printed]), WTERMSIG(k.status))
+                                      : fmt::format("FAIL {}: the test process exited with status {}\n", label(dirs[printed]),
+                                                    WIFEXITED(k.status) ? WEXITSTATUS(k.status) : -1);
+        ++f;
+      }
+      std::fwrite(text.data(), 1, text.size(), stdout);
+      std::fflush(stdout);
+      passed += p;
+      failed += f;
+      ++printed;
+    }
+    if (printed == dirs.size()) break;
+    if (running == 0) continue;
+    int status = 0;
+    pid_t pid = waitpid(-1, &status, 0);
+    if (pid < 0) {
+      if (errno == EINTR) continue;
+      std::fprintf(stderr, "stc: error: waitpid: %s\n", std::strerror(errno));
+      return 1;
+    }
+    for (Child& k : kids)
+      if (k.pid == pid && !k.done) {
+        k.done = true;
+        k.status = status;
+        --running;
+      }
+  }
+  std::printf("%u passed, %u failed\n", passed, failed);
+  return failed ? 1 : 0;
+}
+
+}  // namespace stc::tools
