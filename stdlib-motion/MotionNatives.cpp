@@ -103,6 +103,26 @@ std::string where(const std::string& file, const toml::node& n) {
 
 }  // namespace
 
+namespace {
+const std::pair<const char*, FaultKind> kFaultKinds[] = {
+    {"drive_error", FaultKind::DriveError}, {"communication_lost", FaultKind::CommunicationLost},
+    {"communication_restored", FaultKind::CommunicationRestored}, {"limit_positive", FaultKind::LimitPositive},
+    {"limit_negative", FaultKind::LimitNegative}, {"limits_released", FaultKind::LimitsReleased}};
+}  // namespace
+
+bool faultKindNamed(std::string_view name, FaultKind& out) {
+  for (const auto& [n, k] : kFaultKinds)
+    if (name == n) {
+      out = k;
+      return true;
+    }
+  return false;
+}
+
+const char* faultKindNames() {
+  return "drive_error, communication_lost, communication_restored, limit_positive, limit_negative or limits_released";
+}
+
 bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error) {
   const std::string file = dir + "/project.toml";
   toml::table tbl;
@@ -225,18 +245,10 @@ bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::
         std::string at = f ? f->get("at") ? f->get("at")->value_or(std::string()) : std::string() : std::string();
         std::string fk = f ? f->get("kind") ? f->get("kind")->value_or(std::string()) : std::string() : std::string();
         FaultEvent ev;
-        static const std::pair<const char*, FaultKind> fkinds[] = {
-            {"drive_error", FaultKind::DriveError}, {"communication_lost", FaultKind::CommunicationLost},
-            {"communication_restored", FaultKind::CommunicationRestored}, {"limit_positive", FaultKind::LimitPositive},
-            {"limit_negative", FaultKind::LimitNegative}, {"limits_released", FaultKind::LimitsReleased}};
-        auto fkind = std::find_if(std::begin(fkinds), std::end(fkinds), [&](auto& p) { return fk == p.first; });
-        if (!f || !vm::parseIecDuration(at, ev.atNs) || fkind == std::end(fkinds)) {
-          error = where(file, fn) + "axis '" + c.name +
-                  "': a fault needs at = \"<duration>\" and kind = drive_error, communication_lost, communication_restored, "
-                  "limit_positive, limit_negative or limits_released";
+        if (!f || !vm::parseIecDuration(at, ev.atNs) || !faultKindNamed(fk, ev.kind)) {
+          error = where(file, fn) + "axis '" + c.name + "': a fault needs at = \"<duration>\" and kind = " + faultKindNames();
           return false;
         }
-        ev.kind = fkind->second;
         c.drive.faults.push_back(ev);
       }
     }

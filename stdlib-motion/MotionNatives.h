@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "stdlib-motion/core/Kernel.h"
@@ -19,6 +20,11 @@ void setProjectAxes(std::vector<AxisConfig> axes);
 // Reads the [[axis]] tables of `dir`/project.toml.  False with `error`
 // (file:line:col: message) on a bad table; no file or no table is fine.
 bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error);
+
+// Fault kinds by their project.toml / scenario names (drive_error ...); false when unknown.
+bool faultKindNamed(std::string_view name, FaultKind& out);
+// "drive_error, communication_lost, ... or limits_released", for messages.
+const char* faultKindNames();
 
 // The task, cycle and time of the FB call in progress.
 CallCtx callContext();

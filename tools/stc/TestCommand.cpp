@@ -194,18 +194,11 @@ bool loadScenario(const fs::path& path, const std::string& shown, Scenario& sc, 
       if (!checkKeys(t, {"at", "axis", "kind"}, "fault")) return false;
       FaultStep f;
       f.where = where(shown, n);
-      static const std::pair<const char*, motion::FaultKind> kinds[] = {
-          {"drive_error", motion::FaultKind::DriveError}, {"communication_lost", motion::FaultKind::CommunicationLost},
-          {"communication_restored", motion::FaultKind::CommunicationRestored}, {"limit_positive", motion::FaultKind::LimitPositive},
-          {"limit_negative", motion::FaultKind::LimitNegative}, {"limits_released", motion::FaultKind::LimitsReleased}};
       auto axis = t["axis"].value_exact<std::string>();
       auto kind = t["kind"].value_exact<std::string>();
-      auto k = std::find_if(std::begin(kinds), std::end(kinds), [&](auto& p) { return kind && *kind == p.first; });
-      if (!durationOf(t.get("at"), f.at) || !axis || k == std::end(kinds))
-        return fail(n, "a [[fault]] needs at = \"<duration>\", axis = \"NAME\" and kind = drive_error, communication_lost, "
-                       "communication_restored, limit_positive, limit_negative or limits_released");
+      if (!durationOf(t.get("at"), f.at) || !axis || !kind || !motion::faultKindNamed(*kind, f.kind))
+        return fail(n, std::string("a [[fault]] needs at = \"<duration>\", axis = \"NAME\" and kind = ") + motion::faultKindNames());
       f.axis = *axis;
-      f.kind = k->second;
       sc.faults.push_back(std::move(f));
     }
   if (!tables("check", arr)) return false;
