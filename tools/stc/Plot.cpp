@@ -501,7 +501,8 @@ void drawState(Svg& s, const Layout& L, const Column& c, const std::vector<doubl
       if (textWidth(label, 6.2) + 8 <= w)
         s.add(R"(<text class="state-label" x="{}" y="{}" font-size="10">{}</text>)", num(x0 + 4), num(top + height / 2 + 4), xmlEscape(label));
     } else if (v == -2) {
-      s.add(R"(<rect class="state-mixed" x="{}" y="{}" width="{}" height="{}" fill="#888888"/>)", num(x0), num(top + 1), num(w), num(height - 2));
+      s.add(R"(<rect class="state-mixed" x="{}" y="{}" width="{}" height="{}" fill="#888888"><title>several values</title></rect>)", num(x0),
+            num(top + 1), num(w), num(height - 2));
     }
     i = j;
   }
@@ -635,6 +636,12 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
 
   // The shared time axis: grid through every panel and lane, labels at the bottom.
   double xstep = chooseStep(L.t0, L.t1, L.plotW, 14, true, std::max(2, static_cast<int>(L.plotW / 90)));
+  // A trace of 10 s at 1 ms ends at 9.999 s: without --to, the axis runs on to
+  // the next round tick when that is close (2 % of the range).
+  if (!options.to) {
+    double end = std::ceil(L.t1 / xstep - 1e-9) * xstep;
+    if (end > L.t1 && end - L.t1 <= 0.02 * (L.t1 - L.t0)) L.t1 = end;
+  }
   double gridTop = top0, gridBottom = bottom;
   s.add(R"(<g class="time-axis">)");
   for (double t : ticks(L.t0, L.t1, xstep)) {
