@@ -324,13 +324,12 @@ struct Layout {
 // State: the value or -2 for several).  -1: no sample.
 std::vector<int> columnStates(const Layout& L, const std::vector<double>& time, const std::function<int(size_t)>& valueAt) {
   std::vector<int> cols(static_cast<size_t>(L.pixels), -1);
-  for (size_t r = L.r0; r < L.r1; ++r) {
+  // A sample holds until the next one: the one before the window counts too.
+  for (size_t r = L.r0 > 0 ? L.r0 - 1 : 0; r < L.r1; ++r) {
     int v = valueAt(r);
     if (v == -1) continue;
     int c0 = L.column(time[r]);
-    // A sample holds until the next one.
-    int c1 = r + 1 < L.r1 ? std::max(c0, L.column(time[r + 1]) - 1) : c0;
-    if (r + 1 < L.r1 && L.column(time[r + 1]) == c0) c1 = c0;
+    int c1 = r + 1 < time.size() ? std::max(c0, L.column(time[r + 1]) - 1) : c0;
     for (int c = c0; c <= c1; ++c) {
       int& slot = cols[static_cast<size_t>(c)];
       if (slot == -1) slot = v;
@@ -417,7 +416,8 @@ void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Colu
       }
       pts.clear();
     };
-    for (size_t r = L.r0; r < L.r1; ++r) {
+    // One sample either side of the window, so lines run on to the (clipped) edges.
+    for (size_t r = L.r0 > 0 ? L.r0 - 1 : 0, end = std::min(L.r1 + 1, t.size()); r < end; ++r) {
       double v = c.num[r];
       if (!std::isfinite(v)) {
         endLine();
