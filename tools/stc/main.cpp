@@ -18,6 +18,7 @@
 #include "vm/testlib/TestLib.h"
 #include "stdlib-motion/MotionNatives.h"
 #include "tools/stc/TestCommand.h"
+#include "tools/stc/Plot.h"
 
 using namespace stc;
 
@@ -130,6 +131,7 @@ struct BuildArgs : CheckArgs {
   std::vector<std::string> watches;
   std::vector<std::string> traces;
   std::string traceOut;
+  std::string plotOut;   // --plot: an SVG of the trace (tools/stc/Plot.h)
   bool realtime = false;
   std::string watchdog;
   int64_t slice = 0;
@@ -252,8 +254,37 @@ int runRun(const BuildArgs& a) {
     }
   }
   ro.traceOut = a.traceOut;
+  // --plot: the trace goes to --trace-out (a CSV) or a temporary CSV, plotted after the run.
+  std::string plotCsv;
+  struct RemoveAtExit {
+    std::string path;
+    ~RemoveAtExit() {
+      if (!path.empty()) std::remove(path.c_str());
+    }
+  } plotTemp;
+  if (!a.plotOut.empty()) {
+    if (ro.traces.empty()) {
+      std::cerr << "stc: error: --plot needs --trace VAR,... (the variables to plot)\n";
+      return 2;
+    }
+    if (ro.traceOut.empty()) {
+      std::string tmpl = (std::filesystem::temp_directory_path() / "stc-plot-XXXXXX.csv").string();
+      int fd = mkstemps(tmpl.data(), 4);
+      if (fd < 0) {
+        std::cerr << "stc: error: --plot: cannot create a temporary trace file\n";
+        return 1;
+      }
+      close(fd);
+      ro.traceOut = plotCsv = plotTemp.path = tmpl;
+    } else if (ro.traceOut.size() >= 4 && asciiLower(ro.traceOut.substr(ro.traceOut.size() - 4)) == ".csv") {
+      plotCsv = ro.traceOut;
+    } else {
+      std::cerr << "stc: error: --plot reads the trace as CSV: use --trace-out FILE.csv or leave --trace-out out\n";
+      return 2;
+    }
+  }
   if (!ro.traces.empty() && ro.traceOut.empty()) {
-    std::cerr << "stc: error: --trace needs --trace-out FILE.csv|FILE.vcd\n";
+    std::cerr << "stc: error: --trace needs --trace-out FILE.csv|FILE.vcd (or --plot FILE.svg)\n";
     return 2;
   }
   // The axes that project directories configure ([[axis]] in project.toml).
@@ -279,6 +310,15 @@ int runRun(const BuildArgs& a) {
   bool color = a.color == "always" || (a.color == "auto" && isatty(STDERR_FILENO));
   const auto& diags = c.diags().diagnostics();
   for (size_t i = before; i < diags.size(); ++i) std::cerr << renderText(c.sources(), diags[i], color);
+  if (!plotCsv.empty() && rc != 2) {
+    plot::PlotOptions po;
+    po.title = outputStem(a);
+    std::string e;
+    if (plot::plotTraceFile(plotCsv, a.plotOut, po, e) != 0) {
+      std::cerr << "stc: error: --plot: " << e << "\n";
+      if (rc == 0) rc = 1;
+    }
+  }
   return rc;
 }
 
@@ -336,6 +376,7 @@ int main(int argc, char** argv) {
   run->add_option("--watch", ra.watches, "Print VAR after the run (MAIN.fb.Q, GVL.x, arr[3])")->allow_extra_args(false);
   run->add_option("--trace", ra.traces, "Record VAR,... at every tick")->allow_extra_args(false);
   run->add_option("--trace-out", ra.traceOut, "Trace file: .csv or .vcd");
+  run->add_option("--plot", ra.plotOut, "Also draw the --trace variables into an SVG file (see stc plot)");
   run->add_flag("--realtime", ra.realtime, "Pace the simulated clock to the wall clock");
   run->add_flag("--stats", ra.stats, "Print per-task statistics");
   run->add_option("--watchdog", ra.watchdog, "Per-task watchdog (simulated time; 0 = off; default 1s)");
@@ -350,6 +391,8 @@ int main(int argc, char** argv) {
   test->add_flag("--update", ta.update, "Write the golden files expected/<scenario>.csv from this run");
   test->add_option("-j,--jobs", ta.jobs, "Run N projects in parallel (default: one per core)");
   test->add_option("--one", ta.one, "Run one project in this process (used by the parallel runner)")->group("");
+  plot::PlotCommand pc;
+  pc.add(app);
 
   try {
     app.parse(argc, argv);
@@ -363,6 +406,7 @@ int main(int argc, char** argv) {
   }
   if (check->parsed()) return runCheck(ca);
   if (build->parsed()) return runBuild(ba);
+  if (pc.cmd->parsed()) return pc.run();
   ra.cyclesGiven = cyc->count() > 0;
   if (run->parsed()) return runRun(ra);
   if (test->parsed()) return tools::runTest(ta);

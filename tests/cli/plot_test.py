@@ -1,0 +1,230 @@
+#!/usr/bin/env python3
+"""Structural tests of `stc plot` and `stc run --plot` (no golden SVGs).
+
+usage: plot_test.py STC CASE [SOURCE_DIR]
+The SVG marks what it draws: <g class="panel" data-kind=...>, <g class="series"
+data-var=...>, <g class="lane" data-var=...> (BOOL), <g class="band" data-var=...>
+(enums, strings), <text class="legend|xtick|ytick|lane-name">.
+"""
+import atexit
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import xml.etree.ElementTree as ET
+
+STC = sys.argv[1]
+CASE = sys.argv[2]
+SRC = sys.argv[3] if len(sys.argv) > 3 else ""
+NS = "{http://www.w3.org/2000/svg}"
+TMP = tempfile.mkdtemp(prefix="stc-plot-test-")
+if not os.environ.get("STC_PLOT_TEST_KEEP"):  # keep the files to look at them
+    atexit.register(shutil.rmtree, TMP, True)
+
+
+def fail(msg):
+    print("FAIL:", msg)
+    sys.exit(1)
+
+
+def stc(*args):
+    p = subprocess.run([STC, *args], capture_output=True, text=True)
+    return p.returncode, p.stdout + p.stderr
+
+
+def write_csv(name, header, rows):
+    path = os.path.join(TMP, name)
+    with open(path, "w") as f:
+        f.write(",".join(["time"] + header) + "\n")
+        for r in rows:
+            f.write(",".join(r) + "\n")
+    return path
+
+
+def seconds(i, step_ms):
+    ns = i * step_ms * 1_000_000
+    s = str(ns // 1_000_000_000)
+    frac = ns % 1_000_000_000
+    if frac:
+        s += "." + f"{frac:09d}".rstrip("0")
+    return s
+
+
+def real(v):
+    s = repr(float(v))
+    return s.replace("e", "E") if "e" in s else s
+
+
+def parse(path):
+    try:
+        return ET.parse(path).getroot()
+    except ET.ParseError as e:
+        fail(f"{path} is not well-formed XML: {e}")
+
+
+def groups(root, cls):
+    return [g for g in root.iter(NS + "g") if g.get("class") == cls]
+
+
+def texts(node, cls):
+    return [t.text for t in node.iter(NS + "text") if t.get("class") == cls]
+
+
+def expect(cond, msg):
+    if not cond:
+        fail(msg)
+
+
+def motion_trace(step_ms=10, seconds_total=10):
+    """Position ramp 0..100, velocity, a counter, two BOOLs, an enum state, a TIME."""
+    header = ["Axis1.fActPosition", "Axis1.fActVelocity", "MAIN.count", "MAIN.bRun", "MAIN.move.Done",
+              "MAIN.state", "MAIN.elapsed"]
+    rows = []
+    n = seconds_total * 1000 // step_ms
+    for i in range(n + 1):
+        t = i * step_ms / 1000
+        state = "E_State#Idle" if t < 2 else "E_State#Moving" if t < 8 else "E_State#Done"
+        rows.append([seconds(i, step_ms), real(10.0 * t), real(10.0 if 2 <= t < 8 else 0.0), str(i),
+                     "TRUE" if 2 <= t < 8 else "FALSE", "TRUE" if t >= 8 else "FALSE", state,
+                     f"T#{i * step_ms}ms" if i else "T#0s"])
+    return write_csv("motion.csv", header, rows)
+
+
+def case_structure():
+    csv = motion_trace()
+    svg = os.path.join(TMP, "motion.svg")
+    rc, out = stc("plot", csv, "-o", svg, "--title", "Demo <1>")
+    expect(rc == 0, f"stc plot exit {rc}: {out}")
+    root = parse(svg)
+    kinds = [g.get("data-kind") for g in groups(root, "panel")]
+    expect(kinds == ["position", "velocity", "other", "time"], f"panels {kinds}")
+    series = [g.get("data-var") for g in groups(root, "series")]
+    expect(series == ["Axis1.fActPosition", "Axis1.fActVelocity", "MAIN.count", "MAIN.elapsed"], f"series {series}")
+    lanes = [g.get("data-var") for g in groups(root, "lane")]
+    expect(lanes == ["MAIN.bRun", "MAIN.move.Done"], f"lanes {lanes}")
+    bands = [g.get("data-var") for g in groups(root, "band")]
+    expect(bands == ["MAIN.state"], f"bands {bands}")
+    expect(texts(root, "legend") == series, f"legend {texts(root, 'legend')}")
+    expect(texts(root, "lane-name") == lanes + bands, f"lane names {texts(root, 'lane-name')}")
+    expect(texts(root, "xtick") == ["0", "2", "4", "6", "8", "10"], f"x ticks {texts(root, 'xtick')}")
+    expect(texts(root, "title") == ["Demo <1>"], "title (escaped)")
+    pos = groups(root, "panel")[0]
+    expect(texts(pos, "ytick") == ["0", "50", "100"], f"position y ticks {texts(pos, 'ytick')}")
+    expect(any("[u]" in (t.text or "") for t in pos.iter(NS + "text")), "position unit")
+    expect(any("[u/s]" in (t.text or "") for t in groups(root, "panel")[1].iter(NS + "text")), "velocity unit")
+    expect(any("[s]" in (t.text or "") for t in groups(root, "panel")[3].iter(NS + "text")), "TIME unit")
+    labels = [t.text for t in root.iter(NS + "text") if t.get("class") == "state-label"]
+    expect(labels == ["Idle", "Moving", "Done"], f"state labels {labels}")
+    colors = [l.get("stroke") for g in groups(root, "series") for l in g.iter(NS + "polyline")]
+    expect(len(set(colors)) == len(series), f"series colours not distinct: {colors}")
+    print("ok")
+
+
+def case_vars_window():
+    csv = motion_trace()
+    svg = os.path.join(TMP, "vars.svg")
+    rc, out = stc("plot", csv, "-o", svg, "--vars", "main.STATE,Axis1.fActPosition", "--vars", "MAIN.bRun",
+                  "--from", "2s", "--to", "4")
+    expect(rc == 0, f"exit {rc}: {out}")
+    root = parse(svg)
+    expect([g.get("data-var") for g in groups(root, "series")] == ["Axis1.fActPosition"], "series")
+    expect([g.get("data-var") for g in groups(root, "lane")] == ["MAIN.bRun"], "lanes")
+    expect([g.get("data-var") for g in groups(root, "band")] == ["MAIN.state"], "bands")
+    xt = texts(root, "xtick")
+    expect(xt[0] == "2.0" and xt[-1] == "4.0" and len(xt) >= 5, f"window ticks {xt}")
+    expect(texts(root, "subtitle")[0].startswith("201 samples"), texts(root, "subtitle"))
+    # Default output name: the trace's name with .svg; default title: the trace file's name.
+    rc, out = stc("plot", csv)
+    expect(rc == 0 and os.path.exists(csv[:-4] + ".svg"), f"default output: {rc} {out}")
+    expect(texts(parse(csv[:-4] + ".svg"), "title") == ["motion.csv"], "default title")
+    print("ok")
+
+
+def case_downsample():
+    # 100k rows, 1 ms: a noisy sine with one spike, a BOOL toggling every row with
+    # one isolated pulse elsewhere, an enum changing every 3 rows, a hex WORD.
+    n = 100_000
+    rows = []
+    for i in range(n):
+        v = 50 * math.sin(i / 2000) + (1 if i % 2 else -1)
+        if i == 77_777:
+            v = 1000.0
+        toggle = "TRUE" if (i < 10_000 and i % 2) else "FALSE"
+        pulse = "TRUE" if i == 55_555 else "FALSE"
+        rows.append([seconds(i, 1), real(v), toggle, pulse, f"E#S{(i // 3) % 5}", f"16#{i & 0xFFFF:X}"])
+    csv = write_csv("big.csv", ["MAIN.fValue", "MAIN.bToggle", "MAIN.bPulse", "MAIN.eState", "MAIN.wWord"], rows)
+    svg = os.path.join(TMP, "big.svg")
+    rc, out = stc("plot", csv, "-o", svg)
+    expect(rc == 0, f"exit {rc}: {out}")
+    size = os.path.getsize(svg)
+    expect(size < 1_000_000, f"SVG is {size} bytes")
+    root = parse(svg)
+    panel = groups(root, "panel")[0]
+    yt = [float(t) for t in texts(panel, "ytick")]
+    expect(max(yt) >= 1000, f"the spike was lost: y ticks {yt}")
+    # The spike's point is drawn: some polyline point lies at the top of the data.
+    ys = [float(p.split(",")[1]) for pl in panel.iter(NS + "polyline") for p in pl.get("points").split()]
+    top = [r for r in panel.iter(NS + "rect")][0]
+    expect(min(ys) < float(top.get("y")) + 0.1 * float(top.get("height")), "spike not drawn")
+    lanes = {g.get("data-var"): g for g in groups(root, "lane")}
+    pulse_paths = [p.get("d") for p in lanes["MAIN.bPulse"].iter(NS + "path") if p.get("class") != "wave"]
+    expect(pulse_paths, "the one-sample pulse was lost")
+    toggle_paths = [p.get("d") for p in lanes["MAIN.bToggle"].iter(NS + "path") if p.get("fill-opacity") == "0.6"]
+    expect(toggle_paths, "the fast toggling is not shown as a band")
+    expect(len(groups(root, "series")) == 2, "the WORD column is a number series")
+    # 0 .. 99.999 s: the axis runs on to the round 100.
+    expect(texts(root, "xtick") == ["0", "20", "40", "60", "80", "100"], f"x ticks {texts(root, 'xtick')}")
+    print(f"ok ({size} bytes)")
+
+
+def case_errors():
+    rc, out = stc("plot", os.path.join(TMP, "nosuch.csv"), "-o", os.path.join(TMP, "x.svg"))
+    expect(rc == 2 and "cannot open" in out and "nosuch.csv" in out, f"missing file: {rc} {out}")
+    csv = motion_trace()
+    rc, out = stc("plot", csv, "-o", os.path.join(TMP, "x.svg"), "--vars", "MAIN.nosuch")
+    expect(rc == 2 and "no column 'MAIN.nosuch'" in out and "MAIN.bRun" in out, f"unknown var: {rc} {out}")
+    rc, out = stc("plot", csv, "-o", os.path.join(TMP, "x.svg"), "--from", "soon")
+    expect(rc == 2 and "not a time" in out, f"bad --from: {rc} {out}")
+    rc, out = stc("plot", csv, "-o", os.path.join(TMP, "x.svg"), "--from", "5s", "--to", "1s")
+    expect(rc == 2 and "--from" in out, f"--from after --to: {rc} {out}")
+    bad = write_csv("bad.csv", ["A"], [["0", "1"], ["oops"]])
+    rc, out = stc("plot", bad, "-o", os.path.join(TMP, "x.svg"))
+    expect(rc == 1 and "bad.csv:3" in out, f"bad row: {rc} {out}")
+    rc, out = stc("plot", csv, "-o", os.path.join(TMP, "nodir", "x.svg"))
+    expect(rc == 1 and "cannot open" in out, f"unwritable output: {rc} {out}")
+    print("ok")
+
+
+def case_run():
+    st = os.path.join(SRC, "tests/run/motion_move_absolute.st")
+    svg, csv = os.path.join(TMP, "run.svg"), os.path.join(TMP, "run.csv")
+    trace = "Axis1.fSetPosition,Axis1.fSetVelocity,MAIN.move.Busy,MAIN.move.Done,Axis1.nAxisState"
+    rc, out = stc("run", st, "--lib", "codesys_sm3", "--for", "10.2s", "--trace", trace, "--plot", svg,
+                  "--trace-out", csv, "--watch", "MAIN.doneCycle")
+    expect(rc == 0 and "MAIN.doneCycle = 10103" in out, f"run: {rc} {out}")
+    expect(open(csv).readline().strip() == "time," + trace, "the CSV is still written")
+    root = parse(svg)
+    expect([g.get("data-kind") for g in groups(root, "panel")] == ["position", "velocity"], "panels")
+    expect([g.get("data-var") for g in groups(root, "lane")] == ["MAIN.move.Busy", "MAIN.move.Done"], "lanes")
+    expect("discrete_motion" in [t.text for t in root.iter(NS + "text") if t.get("class") == "state-label"], "state label")
+    expect(texts(root, "xtick") == ["0", "2", "4", "6", "8", "10"], f"x ticks {texts(root, 'xtick')}")
+    expect(texts(root, "title") == ["motion_move_absolute"], "title")
+    # Without --trace-out: a temporary CSV, removed afterwards.
+    before = set(os.listdir(tempfile.gettempdir()))
+    svg2 = os.path.join(TMP, "run2.svg")
+    rc, out = stc("run", st, "--lib", "codesys_sm3", "--for", "1s", "--trace", "Axis1.fSetPosition", "--plot", svg2)
+    expect(rc == 0 and len(groups(parse(svg2), "series")) == 1, f"run without --trace-out: {rc} {out}")
+    left = [f for f in set(os.listdir(tempfile.gettempdir())) - before if f.startswith("stc-plot-") and f.endswith(".csv")]
+    expect(not left, f"temporary trace left behind: {left}")
+    rc, out = stc("run", st, "--lib", "codesys_sm3", "--for", "1s", "--plot", svg2)
+    expect(rc == 2 and "--plot needs --trace" in out, f"--plot without --trace: {rc} {out}")
+    rc, out = stc("run", st, "--lib", "codesys_sm3", "--for", "1s", "--trace", "Axis1.fSetPosition", "--plot", svg2,
+                  "--trace-out", os.path.join(TMP, "t.vcd"))
+    expect(rc == 2 and "CSV" in out, f"--plot with a VCD trace: {rc} {out}")
+    print("ok")
+
+
+{"structure": case_structure, "vars-window": case_vars_window, "downsample": case_downsample,
+ "errors": case_errors, "run": case_run}[CASE]()

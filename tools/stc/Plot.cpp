@@ -1,0 +1,754 @@
+#include "tools/stc/Plot.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <tuple>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "vm/Time.h"
+
+namespace stc::plot {
+namespace {
+
+// ------------------------------------------------------------------ CSV
+
+// Splits one CSV record (RFC 4180 quoting).  False on an unterminated quote.
+bool splitCsv(const std::string& line, std::vector<std::string>& fields) {
+  fields.clear();
+  std::string cur;
+  size_t i = 0;
+  for (;;) {
+    cur.clear();
+    if (i < line.size() && line[i] == '"') {
+      ++i;
+      for (;;) {
+        if (i >= line.size()) return false;
+        if (line[i] == '"') {
+          if (i + 1 < line.size() && line[i + 1] == '"') {
+            cur += '"';
+            i += 2;
+            continue;
+          }
+          ++i;
+          break;
+        }
+        cur += line[i++];
+      }
+      while (i < line.size() && line[i] != ',') cur += line[i++];
+    } else {
+      while (i < line.size() && line[i] != ',') cur += line[i++];
+    }
+    fields.push_back(cur);
+    if (i >= line.size()) return true;
+    ++i;   // the comma
+  }
+}
+
+std::string lower(std::string s) {
+  for (char& c : s)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return s;
+}
+
+bool parseDouble(const std::string& s, double& out) {
+  if (s.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return end == s.c_str() + s.size();
+}
+
+// ------------------------------------------------------------------ values
+
+enum class Kind { Bool, Number, State };
+
+struct Column {
+  std::string name;
+  Kind kind = Kind::Number;
+  bool isTime = false;               // Number: TIME/LTIME values (seconds)
+  std::vector<double> num;           // Bool (0/1), Number; NaN = no value
+  std::vector<int> state;            // State: index into labels
+  std::vector<std::string> labels;   // State: distinct values, first seen first
+  std::string labelPrefix;           // State: `Type#` common to every value (dropped in labels)
+  int color = 0;
+};
+
+// An IEC literal as a number: integers, REAL (1.5, 1.0E+19, NaN, Inf), 16#FF, T#1s.
+bool literalNumber(const std::string& s, double& v, bool& isTime) {
+  isTime = false;
+  if (s == "NaN") { v = std::numeric_limits<double>::quiet_NaN(); return true; }
+  if (s == "Inf") { v = std::numeric_limits<double>::infinity(); return true; }
+  if (s == "-Inf") { v = -std::numeric_limits<double>::infinity(); return true; }
+  size_t hash = s.find('#');
+  if (hash == std::string::npos) {
+    if (s.empty() || !(std::isdigit(static_cast<unsigned char>(s[0])) || s[0] == '-' || s[0] == '+' || s[0] == '.')) return false;
+    return parseDouble(s, v);
+  }
+  std::string pre = lower(s.substr(0, hash));
+  if (pre == "t" || pre == "time" || pre == "ltime") {
+    vm::Time ns = 0;
+    if (!vm::parseIecDuration(s, ns)) return false;
+    v = static_cast<double>(ns) / 1e9;
+    isTime = true;
+    return true;
+  }
+  int base = pre == "16" ? 16 : pre == "8" ? 8 : pre == "2" ? 2 : 0;
+  if (!base) return false;
+  uint64_t x = 0;
+  bool any = false;
+  for (size_t i = hash + 1; i < s.size(); ++i) {
+    char c = s[i];
+    if (c == '_') continue;
+    int d = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : 99;
+    if (d >= base) return false;
+    x = x * static_cast<uint64_t>(base) + static_cast<uint64_t>(d);
+    any = true;
+  }
+  v = static_cast<double>(x);
+  return any;
+}
+
+Column classify(const std::string& name, const std::vector<std::string>& raw) {
+  Column c;
+  c.name = name;
+  bool allBool = true, allNum = true, allTime = true;
+  for (const std::string& s : raw) {
+    if (s.empty()) continue;
+    if (s != "TRUE" && s != "FALSE") allBool = false;
+    double v;
+    bool t;
+    if (allNum && !literalNumber(s, v, t)) allNum = false;
+    if (allNum && !t) allTime = false;
+    if (!allBool && !allNum) break;
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (allBool && !raw.empty()) {
+    c.kind = Kind::Bool;
+    c.num.reserve(raw.size());
+    for (const std::string& s : raw) c.num.push_back(s.empty() ? nan : s == "TRUE" ? 1.0 : 0.0);
+    return c;
+  }
+  if (allNum) {
+    c.kind = Kind::Number;
+    c.isTime = allTime && !raw.empty();
+    c.num.reserve(raw.size());
+    for (const std::string& s : raw) {
+      double v;
+      bool t;
+      c.num.push_back(!s.empty() && literalNumber(s, v, t) ? v : nan);
+    }
+    return c;
+  }
+  c.kind = Kind::State;
+  std::map<std::string, int> ids;
+  c.state.reserve(raw.size());
+  for (const std::string& s : raw) {
+    auto [it, fresh] = ids.emplace(s, static_cast<int>(c.labels.size()));
+    if (fresh) c.labels.push_back(s);
+    c.state.push_back(it->second);
+  }
+  // Enums print as `Type#Value`: the labels show the values.
+  size_t hash = c.labels.empty() ? std::string::npos : c.labels[0].find('#');
+  if (hash != std::string::npos && c.labels[0][0] != '\'' && c.labels[0][0] != '"') {
+    std::string prefix = c.labels[0].substr(0, hash + 1);
+    bool common = true;
+    for (const std::string& l : c.labels)
+      if (l.compare(0, prefix.size(), prefix) != 0) common = false;
+    if (common) c.labelPrefix = prefix;
+  }
+  return c;
+}
+
+// What a numeric variable measures, from its name: the panel it goes into.
+struct KindInfo {
+  const char* key;
+  const char* label;
+  const char* unit;
+};
+const KindInfo kKinds[] = {
+    {"position", "position", "u"},      {"velocity", "velocity", "u/s"},
+    {"acceleration", "acceleration", "u/s²"}, {"jerk", "jerk", "u/s³"},
+    {"torque", "torque", ""},           {"current", "current", ""},
+    {"time", "time", "s"},              {"other", "", ""},
+};
+
+bool endsWith(const std::string& s, const char* suffix) {
+  size_t n = std::strlen(suffix);
+  return s.size() >= n && s.compare(s.size() - n, n, suffix) == 0;
+}
+
+int kindOf(const Column& c) {
+  std::string n = lower(c.name);
+  size_t dot = n.find_last_of('.');
+  if (dot != std::string::npos) n = n.substr(dot + 1);
+  if (c.isTime) return 6;
+  for (const char* s : {"position", "pos"}) if (endsWith(n, s)) return 0;
+  for (const char* s : {"velocity", "vel", "speed"}) if (endsWith(n, s)) return 1;
+  for (const char* s : {"acceleration", "acc", "deceleration", "dec"}) if (endsWith(n, s)) return 2;
+  if (endsWith(n, "jerk")) return 3;
+  if (endsWith(n, "torque")) return 4;
+  if (endsWith(n, "current")) return 5;
+  return 7;
+}
+
+// ------------------------------------------------------------------ numbers and ticks
+
+double niceStep(double raw) {
+  if (!(raw > 0) || !std::isfinite(raw)) return 1;
+  double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  double r = raw / mag;
+  double n = r <= 1.0 + 1e-9 ? 1 : r <= 2.0 + 1e-9 ? 2 : r <= 5.0 + 1e-9 ? 5 : 10;
+  return n * mag;
+}
+
+double nextNice(double step) { return niceStep(step * 1.0001 + step * 0.5); }
+
+std::string tickLabel(double v, double step) {
+  if (std::fabs(v) < step * 1e-6) return "0";
+  double mag = std::max(std::fabs(v), step);
+  if (mag >= 1e7 || step < 1e-6) {
+    std::string s = fmt::format("{:.3g}", v);
+    return s;
+  }
+  int decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)));
+  return fmt::format("{:.{}f}", v, decimals);
+}
+
+// Seconds for reading: up to 9 decimals, no trailing zeros.
+std::string seconds(double v) {
+  std::string t = fmt::format("{:.9f}", v);
+  t.erase(t.find_last_not_of('0') + 1);
+  if (t.back() == '.') t.pop_back();
+  return t == "-0" ? "0" : t;
+}
+
+std::vector<double> ticks(double lo, double hi, double step) {
+  std::vector<double> out;
+  double first = std::ceil(lo / step - 1e-9);
+  for (double k = first;; k += 1) {
+    double v = k * step;
+    if (v > hi + step * 1e-9 || out.size() > 200) break;
+    out.push_back(v);
+  }
+  return out;
+}
+
+// Text width estimate for 11 px sans-serif.
+double textWidth(const std::string& s, double perChar = 6.6) {
+  size_t n = 0;
+  for (unsigned char c : s)
+    if ((c & 0xC0) != 0x80) ++n;
+  return static_cast<double>(n) * perChar;
+}
+
+// A step that gives about `target` ticks over [lo, hi] whose labels fit in `pixels`.
+double chooseStep(double lo, double hi, double pixels, double minGap, bool horizontal, int target) {
+  double step = niceStep((hi - lo) / std::max(1, target));
+  for (int guard = 0; guard < 40; ++guard) {
+    double px = step / (hi - lo) * pixels;
+    double need = minGap;
+    if (horizontal) {
+      double w = 0;
+      for (double v : ticks(lo, hi, step)) w = std::max(w, textWidth(tickLabel(v, step)));
+      need = w + minGap;
+    }
+    if (px >= need) break;
+    step = nextNice(step);
+  }
+  return step;
+}
+
+std::string xmlEscape(const std::string& s) {
+  std::string out;
+  for (unsigned char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default:
+        if (c < 0x20) out += ' ';
+        else out += static_cast<char>(c);
+    }
+  }
+  return out;
+}
+
+// Shortens `s` to about `maxWidth` pixels, keeping the informative tail.
+std::string fitText(const std::string& s, double maxWidth) {
+  if (textWidth(s) <= maxWidth) return s;
+  size_t keep = static_cast<size_t>(std::max(1.0, maxWidth / 6.6 - 1));
+  if (keep >= s.size()) return s;
+  return "…" + s.substr(s.size() - keep);
+}
+
+std::string num(double v) {
+  if (std::fabs(v - std::round(v)) < 0.05) return fmt::format("{}", static_cast<long long>(std::llround(v)));
+  return fmt::format("{:.1f}", v);
+}
+
+const char* kLineColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
+                             "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
+const char* kBandColors[] = {"#cfe2f3", "#fce5cd", "#d9ead3", "#f4cccc", "#d9d2e9", "#fff2cc",
+                             "#d0e0e3", "#ead1dc", "#e6e6e6", "#c9daf8", "#f9cb9c", "#b6d7a8"};
+
+// ------------------------------------------------------------------ the drawing
+
+struct Layout {
+  double width = 1100;
+  double left = 76;
+  double legend = 180;   // right-hand column for legends and lane names
+  double plotW = 0;
+  double t0 = 0, t1 = 1;
+  int pixels = 0;        // pixel columns of the plot area
+  size_t r0 = 0, r1 = 0; // visible rows [r0, r1)
+  double x(double t) const { return left + (t - t0) / (t1 - t0) * plotW; }
+  int column(double t) const {
+    int c = static_cast<int>(std::floor((t - t0) / (t1 - t0) * pixels));
+    return std::clamp(c, 0, pixels - 1);
+  }
+};
+
+// Per pixel column: which values occur (Bool: bit 0 = low, bit 1 = high;
+// State: the value or -2 for several).  -1: no sample.
+std::vector<int> columnStates(const Layout& L, const std::vector<double>& time, const std::function<int(size_t)>& valueAt) {
+  std::vector<int> cols(static_cast<size_t>(L.pixels), -1);
+  // A sample holds until the next one: the one before the window counts too.
+  for (size_t r = L.r0 > 0 ? L.r0 - 1 : 0; r < L.r1; ++r) {
+    int v = valueAt(r);
+    if (v == -1) continue;
+    int c0 = L.column(time[r]);
+    int c1 = r + 1 < time.size() ? std::max(c0, L.column(time[r + 1]) - 1) : c0;
+    for (int c = c0; c <= c1; ++c) {
+      int& slot = cols[static_cast<size_t>(c)];
+      if (slot == -1) slot = v;
+      else if (slot != v) slot = -2;
+    }
+  }
+  return cols;
+}
+
+struct Panel {
+  int kind;
+  std::vector<size_t> series;   // indices into columns
+};
+
+class Svg {
+public:
+  std::string out;
+  template <typename... A>
+  void add(fmt::format_string<A...> f, A&&... a) {
+    out += fmt::format(f, std::forward<A>(a)...);
+    out += '\n';
+  }
+};
+
+void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Column>& cols, const std::vector<double>& t, double top,
+                 double height, int index, const std::vector<double>& timeTicks) {
+  const KindInfo& k = kKinds[p.kind];
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (size_t ci : p.series)
+    for (size_t r = L.r0; r < L.r1; ++r) {
+      double v = cols[ci].num[r];
+      if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+  if (!(lo <= hi)) lo = 0, hi = 1;
+  if (hi - lo <= std::max(std::fabs(hi), std::fabs(lo)) * 1e-12) {
+    double d = lo == 0 ? 1 : std::fabs(lo) * 0.1;
+    lo -= d, hi += d;
+  } else {
+    double pad = (hi - lo) * 0.05;
+    lo -= pad, hi += pad;
+  }
+  double step = chooseStep(lo, hi, height, 22, false, std::max(2, static_cast<int>(height / 40)));
+  auto y = [&](double v) { return top + height - (v - lo) / (hi - lo) * height; };
+  std::string title = p.kind != 7 ? k.label : p.series.size() == 1 ? cols[p.series[0]].name : "values";
+  if (*k.unit) title += fmt::format(" [{}]", k.unit);
+  s.add(R"(<g class="panel" data-kind="{}">)", p.kind == 7 ? "other" : k.key);
+  s.add(R"(<text class="panel-title" x="{}" y="{}" font-weight="bold">{}</text>)", num(L.left), num(top - 6), xmlEscape(title));
+  s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#ffffff" stroke="#999999"/>)", num(L.left), num(top), num(L.plotW), num(height));
+  for (double v : ticks(lo, hi, step)) {
+    double yy = y(v);
+    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e3e3e3"/>)", num(L.left), num(yy), num(L.left + L.plotW), num(yy));
+    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#999999"/>)", num(L.left - 4), num(yy), num(L.left), num(yy));
+    s.add(R"(<text class="ytick" x="{}" y="{}" text-anchor="end">{}</text>)", num(L.left - 6), num(yy + 4), tickLabel(v, step));
+  }
+  for (double tt : timeTicks)
+    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e3e3e3"/>)", num(L.x(tt)), num(top), num(L.x(tt)), num(top + height));
+  s.add(R"(<clipPath id="clip{}"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath>)", index, num(L.left), num(top - 1),
+        num(L.plotW), num(height + 2));
+  double ly = top + 12;
+  for (size_t ci : p.series) {
+    const Column& c = cols[ci];
+    const char* color = kLineColors[c.color % 10];
+    // Min/max per pixel column, in time order, so steps and spikes survive.
+    std::vector<std::string> lines;
+    std::string pts;
+    int curCol = -1;
+    size_t firstR = 0, minR = 0, maxR = 0, lastR = 0;
+    auto flushCol = [&]() {
+      if (curCol < 0) return;
+      size_t order[4] = {firstR, std::min(minR, maxR), std::max(minR, maxR), lastR};
+      size_t prev = static_cast<size_t>(-1);
+      for (size_t r : order) {
+        if (r == prev) continue;
+        prev = r;
+        pts += num(L.x(t[r])) + ',' + num(y(c.num[r])) + ' ';
+      }
+      curCol = -1;
+    };
+    auto endLine = [&]() {
+      flushCol();
+      if (!pts.empty()) {
+        pts.pop_back();
+        lines.push_back(std::move(pts));
+      }
+      pts.clear();
+    };
+    // One sample either side of the window, so lines run on to the (clipped) edges.
+    for (size_t r = L.r0 > 0 ? L.r0 - 1 : 0, end = std::min(L.r1 + 1, t.size()); r < end; ++r) {
+      double v = c.num[r];
+      if (!std::isfinite(v)) {
+        endLine();
+        continue;
+      }
+      int col = L.column(t[r]);
+      if (col != curCol) {
+        flushCol();
+        curCol = col;
+        firstR = minR = maxR = lastR = r;
+      } else {
+        if (v < c.num[minR]) minR = r;
+        if (v > c.num[maxR]) maxR = r;
+        lastR = r;
+      }
+    }
+    endLine();
+    s.add(R"s(<g class="series" data-var="{}" clip-path="url(#clip{})">)s", xmlEscape(c.name), index);
+    for (const std::string& l : lines)
+      s.add(R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round" points="{}"/>)", color, l);
+    s.add("</g>");
+    double lx = L.left + L.plotW + 12;
+    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="3"/>)", num(lx), num(ly - 4), num(lx + 16), num(ly - 4), color);
+    s.add(R"(<text class="legend" x="{}" y="{}">{}</text>)", num(lx + 22), num(ly), xmlEscape(fitText(c.name, L.legend - 34)));
+    ly += 16;
+  }
+  s.add("</g>");
+}
+
+void drawBool(Svg& s, const Layout& L, const Column& c, const std::vector<double>& time, double top, double height) {
+  const char* color = kLineColors[c.color % 10];
+  std::vector<int> cols = columnStates(L, time, [&](size_t r) {
+    double v = c.num[r];
+    return std::isnan(v) ? -1 : v != 0 ? 1 : 0;
+  });
+  double hiY = top + 3, loY = top + height - 3;
+  s.add(R"(<g class="lane" data-var="{}">)", xmlEscape(c.name));
+  s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#dddddd"/>)", num(L.left), num(top), num(L.plotW), num(height));
+  std::string wave, fill, mixed;
+  double px = L.plotW / L.pixels;
+  int prev = -1;
+  for (int i = 0; i < L.pixels;) {
+    int v = cols[static_cast<size_t>(i)];
+    int j = i;
+    while (j < L.pixels && cols[static_cast<size_t>(j)] == v) ++j;
+    double x0 = L.left + i * px, x1 = L.left + j * px;
+    if (v == 0 || v == 1) {
+      double yy = v ? hiY : loY;
+      if (prev == 0 || prev == 1) wave += fmt::format("V{}H{}", num(yy), num(x1));
+      else wave += fmt::format("M{},{}H{}", num(x0), num(yy), num(x1));
+      if (v) fill += fmt::format("M{},{}H{}V{}H{}Z", num(x0), num(hiY), num(x1), num(loY), num(x0));
+    } else if (v == -2) {
+      mixed += fmt::format("M{},{}H{}V{}H{}Z", num(x0), num(hiY), num(x1), num(loY), num(x0));
+    }
+    prev = v;
+    i = j;
+  }
+  if (!fill.empty()) s.add(R"(<path d="{}" fill="{}" fill-opacity="0.18"/>)", fill, color);
+  if (!mixed.empty()) s.add(R"(<path d="{}" fill="{}" fill-opacity="0.6"/>)", mixed, color);
+  if (!wave.empty()) s.add(R"(<path class="wave" d="{}" fill="none" stroke="{}" stroke-width="1.5"/>)", wave, color);
+  s.add(R"(<text class="lane-name" x="{}" y="{}" fill="{}">{}</text>)", num(L.left + L.plotW + 12), num(top + height / 2 + 4), color,
+        xmlEscape(fitText(c.name, L.legend - 14)));
+  s.add("</g>");
+}
+
+void drawState(Svg& s, const Layout& L, const Column& c, const std::vector<double>& time, double top, double height) {
+  std::vector<int> cols = columnStates(L, time, [&](size_t r) { return c.state[r]; });
+  s.add(R"(<g class="band" data-var="{}">)", xmlEscape(c.name));
+  s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#fafafa" stroke="#dddddd"/>)", num(L.left), num(top), num(L.plotW), num(height));
+  double px = L.plotW / L.pixels;
+  for (int i = 0; i < L.pixels;) {
+    int v = cols[static_cast<size_t>(i)];
+    int j = i;
+    while (j < L.pixels && cols[static_cast<size_t>(j)] == v) ++j;
+    double x0 = L.left + i * px, w = (j - i) * px;
+    if (v >= 0) {
+      std::string full = c.labels[static_cast<size_t>(v)];
+      std::string label = full.substr(c.labelPrefix.size());
+      s.add(R"(<rect class="state" x="{}" y="{}" width="{}" height="{}" fill="{}" stroke="#ffffff" stroke-width="0.5"><title>{}</title></rect>)",
+            num(x0), num(top + 1), num(w), num(height - 2), kBandColors[static_cast<size_t>(v) % 12], xmlEscape(full));
+      if (textWidth(label, 6.2) + 8 <= w)
+        s.add(R"(<text class="state-label" x="{}" y="{}" font-size="10">{}</text>)", num(x0 + 4), num(top + height / 2 + 4), xmlEscape(label));
+    } else if (v == -2) {
+      s.add(R"(<rect class="state-mixed" x="{}" y="{}" width="{}" height="{}" fill="#888888"><title>several values</title></rect>)", num(x0),
+            num(top + 1), num(w), num(height - 2));
+    }
+    i = j;
+  }
+  s.add(R"(<text class="lane-name" x="{}" y="{}">{}</text>)", num(L.left + L.plotW + 12), num(top + height / 2 + 4),
+        xmlEscape(fitText(c.name, L.legend - 14)));
+  s.add("</g>");
+}
+
+}  // namespace
+
+bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, bool& missing) {
+  missing = false;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    missing = true;
+    error = fmt::format("cannot open '{}': {}", path, std::strerror(errno));
+    return false;
+  }
+  std::string line;
+  std::vector<std::string> fields;
+  if (!std::getline(in, line)) {
+    error = fmt::format("'{}' is empty; expected a trace CSV (header 'time,VAR,...')", path);
+    return false;
+  }
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  if (!splitCsv(line, fields) || fields.empty() || lower(fields[0]) != "time") {
+    error = fmt::format("'{}' is not a trace CSV: the header must start with 'time'", path);
+    return false;
+  }
+  out.names.assign(fields.begin() + 1, fields.end());
+  out.columns.assign(out.names.size(), {});
+  size_t lineNo = 1;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    double t;
+    if (!splitCsv(line, fields) || fields.size() != out.names.size() + 1 || !parseDouble(fields[0], t)) {
+      error = fmt::format("{}:{}: not a trace row (expected a time in seconds and {} values)", path, lineNo, out.names.size());
+      return false;
+    }
+    if (!out.time.empty() && t < out.time.back()) {
+      error = fmt::format("{}:{}: the time {} goes backwards", path, lineNo, fields[0]);
+      return false;
+    }
+    out.time.push_back(t);
+    for (size_t c = 0; c < out.names.size(); ++c) out.columns[c].push_back(std::move(fields[c + 1]));
+  }
+  return true;
+}
+
+std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
+  // The columns, in --vars order.
+  std::vector<Column> cols;
+  std::vector<size_t> pick;
+  if (options.vars.empty()) {
+    for (size_t i = 0; i < trace.names.size(); ++i) pick.push_back(i);
+  } else {
+    for (const std::string& v : options.vars)
+      for (size_t i = 0; i < trace.names.size(); ++i)
+        if (lower(trace.names[i]) == lower(v)) {
+          pick.push_back(i);
+          break;
+        }
+  }
+  for (size_t i : pick) cols.push_back(classify(trace.names[i], trace.columns[i]));
+
+  Layout L;
+  double maxName = 0;
+  for (const Column& c : cols) maxName = std::max(maxName, textWidth(c.name));
+  L.legend = std::clamp(maxName + 44, 150.0, 300.0);
+  L.plotW = L.width - L.left - L.legend - 8;
+  L.pixels = static_cast<int>(L.plotW);
+  // The time window.
+  double tFirst = trace.time.empty() ? 0 : trace.time.front(), tLast = trace.time.empty() ? 1 : trace.time.back();
+  L.t0 = options.from ? *options.from : tFirst;
+  L.t1 = options.to ? *options.to : tLast;
+  if (!(L.t1 > L.t0)) L.t1 = L.t0 + (L.t0 == 0 ? 1 : std::fabs(L.t0) * 0.01);
+  L.r0 = static_cast<size_t>(std::lower_bound(trace.time.begin(), trace.time.end(), L.t0 - 1e-12) - trace.time.begin());
+  L.r1 = static_cast<size_t>(std::upper_bound(trace.time.begin(), trace.time.end(), L.t1 + 1e-12) - trace.time.begin());
+
+  // Panels: one per kind; plain numbers one per variable when there are few.
+  std::vector<Panel> panels;
+  std::vector<size_t> bools, states;
+  int colorIndex = 0;
+  for (size_t i = 0; i < cols.size(); ++i) {
+    if (cols[i].kind == Kind::Bool) bools.push_back(i);
+    else if (cols[i].kind == Kind::State) states.push_back(i);
+  }
+  size_t others = 0;
+  for (const Column& c : cols)
+    if (c.kind == Kind::Number && kindOf(c) == 7) ++others;
+  for (size_t i = 0; i < cols.size(); ++i) {
+    Column& c = cols[i];
+    if (c.kind != Kind::Number) continue;
+    c.color = colorIndex++;
+    int k = kindOf(c);
+    auto it = std::find_if(panels.begin(), panels.end(), [&](const Panel& p) { return p.kind == k; });
+    if (it == panels.end() || (k == 7 && others <= 4)) panels.push_back({k, {i}});
+    else it->series.push_back(i);
+  }
+  for (size_t i : bools) cols[i].color = colorIndex++;
+
+  const double top0 = 72, panelGap = 34, laneH = 22, laneGap = 4, bandH = 24;
+  double y = top0;
+  std::vector<std::pair<double, double>> panelBoxes;
+  for (const Panel& p : panels) {
+    double h = std::max(170.0, 16.0 * static_cast<double>(p.series.size()) + 12);
+    panelBoxes.push_back({y, h});
+    y += h + panelGap;
+  }
+  double lanesTop = panels.empty() ? y - 10 : y - panelGap + 14;
+  double yy = lanesTop;
+  std::vector<double> laneTops, bandTops;
+  for (size_t n = 0; n < bools.size(); ++n) laneTops.push_back(yy), yy += laneH + laneGap;
+  for (size_t n = 0; n < states.size(); ++n) bandTops.push_back(yy), yy += bandH + laneGap;
+  double bottom = (bools.empty() && states.empty()) ? lanesTop - 14 : yy - laneGap;
+  if (cols.empty()) bottom = top0 + 40;
+  double height = bottom + 48;
+
+  Svg s;
+  s.add(R"(<?xml version="1.0" encoding="UTF-8"?>)");
+  s.add(R"(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}" font-family="DejaVu Sans, Arial, Helvetica, sans-serif" font-size="11">)",
+        num(L.width), num(height), num(L.width), num(height));
+  s.add(R"(<rect width="100%" height="100%" fill="#ffffff"/>)");
+  s.add(R"(<text class="title" x="{}" y="24" font-size="16" font-weight="bold">{}</text>)", num(L.left), xmlEscape(options.title));
+  size_t visible = L.r1 - L.r0;
+  s.add(R"(<text class="subtitle" x="{}" y="40" fill="#666666">{} samples, {} s to {} s</text>)", num(L.left), visible,
+        seconds(L.t0), seconds(L.t1));
+  if (cols.empty()) s.add(R"(<text x="{}" y="{}">no variables</text>)", num(L.left), num(top0 + 20));
+
+  // The shared time axis: grid through every panel and lane, labels at the bottom.
+  double xstep = chooseStep(L.t0, L.t1, L.plotW, 14, true, std::max(2, static_cast<int>(L.plotW / 90)));
+  // A trace of 10 s at 1 ms ends at 9.999 s: without --to, the axis runs on to
+  // the next round tick when that is close (2 % of the range).
+  if (!options.to) {
+    double end = std::ceil(L.t1 / xstep - 1e-9) * xstep;
+    if (end > L.t1 && end - L.t1 <= 0.02 * (L.t1 - L.t0)) L.t1 = end;
+  }
+  double gridTop = top0, gridBottom = bottom;
+  s.add(R"(<g class="time-axis">)");
+  for (double t : ticks(L.t0, L.t1, xstep)) {
+    double x = L.x(t);
+    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#eeeeee"/>)", num(x), num(gridTop), num(x), num(gridBottom));
+    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#999999"/>)", num(x), num(gridBottom), num(x), num(gridBottom + 4));
+    s.add(R"(<text class="xtick" x="{}" y="{}" text-anchor="middle">{}</text>)", num(x), num(gridBottom + 16), tickLabel(t, xstep));
+  }
+  s.add(R"(<text class="xlabel" x="{}" y="{}" text-anchor="middle">time [s]</text>)", num(L.left + L.plotW / 2), num(gridBottom + 34));
+  s.add("</g>");
+  // The grid is drawn first; panels paint their white background over it and
+  // draw their own vertical grid below the series.
+  for (size_t i = 0; i < panels.size(); ++i) {
+    auto [top, h] = panelBoxes[i];
+    drawNumeric(s, L, panels[i], cols, trace.time, top, h, static_cast<int>(i), ticks(L.t0, L.t1, xstep));
+  }
+  for (size_t n = 0; n < bools.size(); ++n) drawBool(s, L, cols[bools[n]], trace.time, laneTops[n], laneH);
+  for (size_t n = 0; n < states.size(); ++n) drawState(s, L, cols[states[n]], trace.time, bandTops[n], bandH);
+  s.add("</svg>");
+  return std::move(s.out);
+}
+
+bool parseSeconds(const std::string& text, double& out) {
+  vm::Time ns = 0;
+  if (vm::parseIecDuration(text, ns)) {
+    out = static_cast<double>(ns) / 1e9;
+    return true;
+  }
+  return parseDouble(text, out) && std::isfinite(out);
+}
+
+int plotTraceFile(const std::string& csvPath, const std::string& svgPath, const PlotOptions& options, std::string& error) {
+  TraceTable t;
+  bool missing = false;
+  if (!readTraceCsv(csvPath, t, error, missing)) return missing ? 2 : 1;
+  for (const std::string& v : options.vars) {
+    bool found = false;
+    for (const std::string& n : t.names) found = found || lower(n) == lower(v);
+    if (!found) {
+      std::string names;
+      for (const std::string& n : t.names) names += (names.empty() ? "" : ", ") + n;
+      error = fmt::format("--vars: no column '{}' in '{}' (columns: {})", v, csvPath, names.empty() ? "none" : names);
+      return 2;
+    }
+  }
+  if (options.from && options.to && *options.from >= *options.to) {
+    error = "--from must be before --to";
+    return 2;
+  }
+  if (t.time.empty()) {
+    error = fmt::format("'{}' has no samples", csvPath);
+    return 1;
+  }
+  PlotOptions o = options;
+  if (o.title.empty()) {
+    size_t slash = csvPath.find_last_of('/');
+    o.title = slash == std::string::npos ? csvPath : csvPath.substr(slash + 1);
+  }
+  std::string svg = renderSvg(t, o);
+  std::FILE* f = std::fopen(svgPath.c_str(), "wb");
+  if (!f) {
+    error = fmt::format("cannot open '{}': {}", svgPath, std::strerror(errno));
+    return 1;
+  }
+  bool ok = std::fwrite(svg.data(), 1, svg.size(), f) == svg.size();
+  ok = std::fclose(f) == 0 && ok;
+  if (!ok) {
+    error = fmt::format("cannot write '{}': {}", svgPath, std::strerror(errno));
+    return 1;
+  }
+  return 0;
+}
+
+void PlotCommand::add(CLI::App& app) {
+  cmd = app.add_subcommand("plot", "Draw a trace CSV (stc run --trace-out x.csv) as an SVG");
+  cmd->add_option("trace", trace, "Trace CSV file")->required();
+  cmd->add_option("-o,--output", output, "SVG file (default: the trace's name with .svg)");
+  cmd->add_option("--vars", vars, "Columns to draw: A,B,... (default: all)")->delimiter(',')->allow_extra_args(false);
+  cmd->add_option("--title", title, "Title (default: the trace file's name)");
+  cmd->add_option("--from", from, "Start of the time window (1.5s, 250ms, or seconds)");
+  cmd->add_option("--to", to, "End of the time window");
+}
+
+int PlotCommand::run() const {
+  PlotOptions o;
+  o.vars = vars;
+  o.title = title;
+  for (auto [opt, text, dst] : {std::tuple{"--from", &from, &o.from}, std::tuple{"--to", &to, &o.to}}) {
+    if (text->empty()) continue;
+    double v;
+    if (!parseSeconds(*text, v)) {
+      std::fprintf(stderr, "stc: error: %s: '%s' is not a time (e.g. 1.5s, 250ms, 2)\n", opt, text->c_str());
+      return 2;
+    }
+    *dst = v;
+  }
+  std::string out = output;
+  if (out.empty()) {
+    out = trace;
+    size_t dot = out.find_last_of('.'), slash = out.find_last_of('/');
+    if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) out.erase(dot);
+    out += ".svg";
+  }
+  std::string err;
+  int rc = plotTraceFile(trace, out, o, err);
+  if (rc) std::fprintf(stderr, "stc: error: %s\n", err.c_str());
+  return rc;
+}
+
+}  // namespace stc::plot

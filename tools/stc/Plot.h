@@ -1,0 +1,60 @@
+// `stc plot`: a trace CSV (the file `stc run --trace-out x.csv` writes) drawn
+// as a self-contained SVG.  Numbers become line plots grouped into panels by
+// kind (positions, velocities, ...), BOOLs digital lanes, enums and strings
+// labelled state bands, all on one time axis.  Long traces are reduced to
+// min/max per pixel column, so steps and extremes survive and the file stays
+// small.  See docs/projects.md ("Traces and plots").
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace stc::plot {
+
+struct PlotOptions {
+  std::vector<std::string> vars;   // columns to draw, in this order (empty: all)
+  std::string title;               // empty: the trace file's name
+  std::optional<double> from, to;  // seconds
+};
+
+// A trace as read from CSV: the time column in seconds, the other columns as text.
+struct TraceTable {
+  std::vector<std::string> names;
+  std::vector<double> time;
+  std::vector<std::vector<std::string>> columns;   // columns[c][row]
+};
+
+// Reads a trace CSV.  False with `error` set if the file cannot be read
+// (`missing` true) or is not a trace (no `time` column, bad rows).
+bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, bool& missing);
+
+// The SVG document for `trace` (options.vars must name existing columns).
+std::string renderSvg(const TraceTable& trace, const PlotOptions& options);
+
+// Reads `csvPath`, writes the SVG to `svgPath`.  0 ok; 1 the trace is not
+// readable or empty, or the SVG cannot be written; 2 a bad request (missing
+// trace file, unknown --vars name, --from after --to).  `error` is the message.
+int plotTraceFile(const std::string& csvPath, const std::string& svgPath, const PlotOptions& options,
+                  std::string& error);
+
+// Seconds from the command line: a duration (1.5s, 250ms, T#2s) or a plain number of seconds.
+bool parseSeconds(const std::string& text, double& out);
+
+// The `stc plot` subcommand: registered on `app`; run() executes it once parsed.
+struct PlotCommand {
+  std::string trace;
+  std::string output;
+  std::vector<std::string> vars;
+  std::string title;
+  std::string from, to;
+  CLI::App* cmd = nullptr;
+  void add(CLI::App& app);
+  int run() const;
+};
+
+}  // namespace stc::plot
