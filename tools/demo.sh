@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
-# The main demo: builds stc, checks the conveyor project (its standard FBs
-# run with issue 4), and runs the mixer project on the simulated controller
-# for 2 s, printing watched variables, task statistics and a VCD trace.
+# The main demo: builds stc, runs the two-axis pick-and-place project
+# (projects/pick_and_place: homing, then pick-and-place cycles) for 12 s of
+# simulated time, prints the part count and axis states, and draws the axis
+# positions, the gripper and the cell state into build/demo/pick_and_place.svg.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/build.sh
-build/stc check --stats projects/conveyor_demo
-echo "demo: projects/conveyor_demo checks clean"
 mkdir -p build/demo
-build/stc run projects/mixer_demo --for 2s --stats \
-  --watch GVL.batches --watch Control.state --watch GVL.level --watch GVL.flowPulses \
-  --trace GVL.level,GVL.inletOpen,GVL.mixerOn,GVL.outletOpen --trace-out build/demo/mixer.vcd
-echo "demo: projects/mixer_demo ran 2 s of simulated time; trace in build/demo/mixer.vcd (open it in GTKWave)"
+build/stc run projects/pick_and_place --for 12s \
+  --watch GVL.nParts --watch Cell.eState --watch AxisX.nAxisState --watch AxisZ.nAxisState \
+  --trace AxisX.fSetPosition,AxisZ.fSetPosition,AxisX.fSetVelocity,AxisZ.fSetVelocity,GVL.bGripper,GVL.bHomed,Cell.eState \
+  --trace-out build/demo/pick_and_place.csv --plot build/demo/pick_and_place.svg
+echo "demo: 12 s of projects/pick_and_place; plot in build/demo/pick_and_place.svg (open it in a browser),"
+echo "      trace in build/demo/pick_and_place.csv; build/stc test projects/pick_and_place runs its scenarios"

@@ -121,7 +121,7 @@ equals = 5'
   has "check MAIN.move.Error rises between T#0s and T#1s (scenarios/bad.toml:18:1): it never rises (FALSE at the end)"
   has "check Axis1.fSetPosition >= 1.0 (scenarios/bad.toml:21:1): actual minimum 0.0 at T#0s"
   has "check Axis1.fSetPosition <= 5.0 (scenarios/bad.toml:24:1): actual maximum 10.0 at T#"
-  has "check MAIN.count = 5 at T#2s (scenarios/bad.toml:27:1): the run ends at T#999ms, before that time"
+  has "check MAIN.count = 5 at T#2s (scenarios/bad.toml:27:1): the run ends at T#1s, before that time"
   has "1 passed, 1 failed"
   ;;
 

@@ -606,8 +606,10 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
     switch (c.kind) {
       case Check::Equals: {
         std::string head = fmt::format("  check {} = {} at {} ({})", c.var, c.equals, vm::formatIecTime(c.at), c.where);
-        if (c.at > lastTick) {
-          report += head + ": the run ends at " + vm::formatIecTime(lastTick) + ", before that time\n";
+        // A run of `duration` covers [0, duration]: its last tick's values are those at `duration`.
+        const vm::Time runEnd = sc.duration ? std::max(*sc.duration, lastTick) : lastTick;
+        if (c.at > runEnd) {
+          report += head + ": the run ends at " + vm::formatIecTime(runEnd) + ", before that time\n";
           pass = false;
         } else if (!cs.seen || (cs.probe.isReal ? !withinTolerance(cs.actualReal, cs.expectedReal, sc.tolerance) : cs.actualText != cs.expectedText)) {
           report += head + ": actual " + cs.actualText + "\n";
