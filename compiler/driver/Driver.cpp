@@ -59,6 +59,7 @@ bool Compilation::addPath(const std::string& path) {
     projectLibraries_.insert(projectLibraries_.end(), pc.libraries.begin(), pc.libraries.end());
     bool ok = true;
     for (const std::string& s : pc.sources) ok = addPath(s) && ok;
+    if (!pc.tasksSource.empty()) addBuffer((fs::path(path) / "project.toml [[task]]").string(), pc.tasksSource);
     return ok;
   }
   std::string error;

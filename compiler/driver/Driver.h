@@ -25,6 +25,8 @@ struct ProjectConfig {
   std::vector<std::string> defines;
   std::vector<std::string> sources;      // absolute or root-relative paths, sorted
   std::vector<std::string> libraries;    // [project] libraries: optional libraries of stdlib-motion/ (e.g. codesys_sm3)
+  // [[task]] tables: the CONFIGURATION they stand for, as ST ("" = none; tasks come from the sources).
+  std::string tasksSource;
 };
 
 // The names of the optional libraries built into the compiler.

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <toml++/toml.h>
 
@@ -53,6 +54,45 @@ bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error)
       }
       out.libraries.push_back(*name);
     }
+  }
+  // [[task]] tables: a CONFIGURATION written for the user (one RESOURCE, each
+  // program instance named like its PROGRAM type).
+  if (const toml::array* tasks = tbl["task"].as_array()) {
+    auto at = [&](const toml::node& n) {
+      return manifest.string() + ":" + std::to_string(n.source().begin.line) + ":" + std::to_string(n.source().begin.column) + ": ";
+    };
+    auto ident = [](const std::string& x) {
+      return !x.empty() && (std::isalpha(static_cast<unsigned char>(x[0])) || x[0] == '_') &&
+             std::all_of(x.begin(), x.end(), [](unsigned char c) { return std::isalnum(c) || c == '_'; });
+    };
+    std::string text = "CONFIGURATION __project\n  RESOURCE __cpu ON PLC\n";
+    std::string programs;
+    for (const toml::node& n : *tasks) {
+      const toml::table* t = n.as_table();
+      auto name = t ? (*t)["name"].value<std::string>() : std::nullopt;
+      auto interval = t ? (*t)["interval"].value<std::string>() : std::nullopt;
+      auto event = t ? (*t)["event"].value<std::string>() : std::nullopt;
+      auto priority = t ? (*t)["priority"].value<int64_t>() : std::nullopt;
+      const toml::array* progs = t ? (*t)["programs"].as_array() : nullptr;
+      if (!name || !ident(*name) || (!interval == !event) || !progs || progs->empty()) {
+        error = at(n) + "a [[task]] needs name = \"IDENT\", interval = \"10ms\" (cyclic) or event = \"VAR\" (on its rising edge), "
+                        "and programs = [\"PROGRAM\", ...]; optional priority = N";
+        return false;
+      }
+      std::string iv = interval ? *interval : "";
+      if (interval && !(iv.size() > 2 && (iv.compare(0, 2, "T#") == 0 || iv.compare(0, 2, "t#") == 0))) iv = "T#" + iv;
+      text += "    TASK " + *name + "(" + (interval ? "INTERVAL := " + iv : "SINGLE := " + *event) +
+              ", PRIORITY := " + std::to_string(priority.value_or(0)) + ");\n";
+      for (const toml::node& p : *progs) {
+        auto prog = p.value<std::string>();
+        if (!prog || !ident(*prog)) {
+          error = at(p) + "[[task]] programs: a PROGRAM name";
+          return false;
+        }
+        programs += "    PROGRAM " + *prog + " WITH " + *name + " : " + *prog + ";\n";
+      }
+    }
+    out.tasksSource = text + programs + "  END_RESOURCE\nEND_CONFIGURATION\n";
   }
   fs::path src = root / "src";
   std::error_code ec;
