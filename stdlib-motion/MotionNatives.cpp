@@ -90,6 +90,7 @@ void registerMotionNatives() {
   vm::nativeRegistry().addCycleHook({"motion", [](const vm::HookCtx& c) { kernel().cycle(c.task, c.now, c.interval, c.cycle); }});
   vm::nativeRegistry().addStartHook({"motion", &start});
   registerSm3Natives();
+  registerProjectIo();   // after the motion hooks: its sensors read the axes bound and stepped there
 }
 
 // ---------------------------------------------------------------- project.toml

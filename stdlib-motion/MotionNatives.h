@@ -21,6 +21,20 @@ void setProjectAxes(std::vector<AxisConfig> axes);
 // (file:line:col: message) on a bad table; no file or no table is fine.
 bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error);
 
+// Simulated I/O devices ([[io]] tables of project.toml, docs/projects.md).
+struct IoDevice {
+  enum class Kind : uint8_t { AxisWindow, Delay };
+  Kind kind = Kind::AxisWindow;
+  std::string var;                 // the BOOL variable the device writes
+  std::string axis;                // AxisWindow: TRUE while the axis's actual position is in [low, high]
+  double low = 0, high = 0;
+  std::string source;              // Delay: var follows this BOOL variable `delayNs` later
+  int64_t delayNs = 0;
+};
+bool loadProjectIo(const std::string& dir, std::vector<IoDevice>& out, std::string& error);
+void setProjectIo(std::vector<IoDevice> devices);
+void registerProjectIo();
+
 // Fault kinds by their project.toml / scenario names (drive_error ...); false when unknown.
 bool faultKindNamed(std::string_view name, FaultKind& out);
 // "drive_error, communication_lost, ... or limits_released", for messages.

@@ -163,6 +163,17 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
                   if (!resolvePath(module_->image, layout, path, ref, e) || ref.bit >= 0) return nullptr;
                   typeName = ref.type->name;
                   return image_ + ref.offset;
+                },
+                [this, &layout, &im](const std::string& path, StartCtx::BoolTarget& out) -> bool {
+                  ValueRef ref;
+                  std::string e;
+                  if (!resolvePath(module_->image, layout, path, ref, e) || !ref.type || ref.type->name != "BOOL") return false;
+                  out.bit = ref.bit;
+                  if (ref.offset >= im.inputOffset && ref.offset < im.inputOffset + inputs_.size())
+                    out.byte = inputs_.data() + (ref.offset - im.inputOffset);
+                  else
+                    out.byte = image_ + ref.offset;
+                  return true;
                 }};
     for (const NativeStartHook& h : nativeRegistry().startHooks()) {
       std::string e;

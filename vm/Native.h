@@ -49,6 +49,14 @@ struct StartCtx {
   uint8_t* image;
   // The address of a variable (`GVL.x`, `Axis1`) and its type name; null if none.
   std::function<void*(const std::string& path, std::string& typeName)> lookup;
+  // A BOOL variable, also one AT a bit address (%IX0.1), for simulated devices:
+  // where to write it.  Inputs (%I) are written into the external input buffer,
+  // which is copied into the image before each task slot.  False if no BOOL of that name.
+  struct BoolTarget {
+    uint8_t* byte = nullptr;
+    int bit = -1;              // -1: the whole byte is the BOOL
+  };
+  std::function<bool(const std::string& path, BoolTarget& out)> lookupBool;
 };
 struct NativeStartHook {
   std::string name;

@@ -426,10 +426,12 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
   // The axes, with the scenario's faults added.
   std::vector<motion::AxisConfig> axes;
   std::string err;
-  if (!motion::loadProjectAxes(pr.dir, axes, err)) {
+  std::vector<motion::IoDevice> ios;
+  if (!motion::loadProjectAxes(pr.dir, axes, err) || !motion::loadProjectIo(pr.dir, ios, err)) {
     report += "  " + err + "\n";
     return false;
   }
+  motion::setProjectIo(std::move(ios));
   for (const FaultStep& f : sc.faults) {
     auto ax = std::find_if(axes.begin(), axes.end(), [&](const motion::AxisConfig& a) { return equalsIgnoreCase(a.name, f.axis); });
     if (ax == axes.end()) {

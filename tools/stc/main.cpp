@@ -289,16 +289,18 @@ int runRun(const BuildArgs& a) {
   }
   // The axes that project directories configure ([[axis]] in project.toml).
   std::vector<motion::AxisConfig> axes;
+  std::vector<motion::IoDevice> ios;
   for (const std::string& p : a.paths) {
     std::error_code ec;
     if (!std::filesystem::is_directory(p, ec)) continue;
     std::string err;
-    if (!motion::loadProjectAxes(p, axes, err)) {
+    if (!motion::loadProjectAxes(p, axes, err) || !motion::loadProjectIo(p, ios, err)) {
       std::cerr << "stc: error: " << err << "\n";
       return 1;
     }
   }
   motion::setProjectAxes(std::move(axes));
+  motion::setProjectIo(std::move(ios));
   vm::Controller ctl(*c.model(), c.diags());
   std::string err;
   size_t before = c.diags().diagnostics().size();
