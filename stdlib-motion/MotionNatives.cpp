@@ -4,6 +4,8 @@
 #include <cmath>
 #include <toml++/toml.h>
 
+#include "stdlib-motion/ProjectToml.h"
+
 #include "vm/Native.h"
 #include "vm/Scheduler.h"
 #include "vm/Time.h"
@@ -97,10 +99,7 @@ void registerMotionNatives() {
 
 namespace {
 
-std::string where(const std::string& file, const toml::node& n) {
-  const auto& s = n.source();
-  return file + ":" + std::to_string(s.begin.line) + ":" + std::to_string(s.begin.column) + ": ";
-}
+std::string where(const std::string& file, const toml::node& n) { return tomlWhere(file, n); }
 
 }  // namespace
 
@@ -125,14 +124,9 @@ const char* faultKindNames() {
 }
 
 bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error) {
-  const std::string file = dir + "/project.toml";
+  std::string file;
   toml::table tbl;
-  try {
-    tbl = toml::parse_file(file);
-  } catch (const toml::parse_error&) {
-    return true;   // reported by the compiler's project loader
-  }
-  const toml::array* axes = tbl["axis"].as_array();
+  const toml::array* axes = projectTables(dir, "axis", tbl, file);
   if (!axes) return true;
   for (const toml::node& node : *axes) {
     const toml::table* t = node.as_table();

@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
-#include <toml++/toml.h>
 
 #include "stdlib-motion/MotionNatives.h"
+#include "stdlib-motion/ProjectToml.h"
 #include "vm/Native.h"
 #include "vm/Time.h"
 
@@ -92,18 +92,13 @@ void cycleIo(int64_t nowNs) {
 void setProjectIo(std::vector<IoDevice> devices) { io().devices = std::move(devices); }
 
 bool loadProjectIo(const std::string& dir, std::vector<IoDevice>& out, std::string& error) {
-  const std::string file = dir + "/project.toml";
+  std::string file;
   toml::table tbl;
-  try {
-    tbl = toml::parse_file(file);
-  } catch (const toml::parse_error&) {
-    return true;   // reported by the compiler's project loader
-  }
-  const toml::array* arr = tbl["io"].as_array();
+  const toml::array* arr = projectTables(dir, "io", tbl, file);
   if (!arr) return true;
   for (const toml::node& n : *arr) {
     const toml::table* t = n.as_table();
-    auto here = file + ":" + std::to_string(n.source().begin.line) + ":" + std::to_string(n.source().begin.column) + ": ";
+    const std::string here = tomlWhere(file, n);
     auto str = [&](const char* k) { return t ? (*t)[k].value<std::string>() : std::nullopt; };
     IoDevice d;
     auto var = str("var"), kind = str("kind");
