@@ -116,10 +116,17 @@ void CodeGen::layoutImage() {
   for (ConfigurationDecl* c : model_.configurations)
     for (const ResourceDecl& r : c->resources)
       for (const ProgramConfig& pc : r.programs)
-        for (Symbol* p : model_.pous)
-          if (p->kind == Symbol::Program && equalsIgnoreCase(p->name, pc.type.parts.back().name) &&
-              !out_.image.find(asciiUpper(pc.name.name)))
+        for (Symbol* p : model_.pous) {
+          if (p->kind != Symbol::Program || !equalsIgnoreCase(p->name, pc.type.parts.back().name)) continue;
+          // An instance named like its type is the program's singleton; any other
+          // name already in the image (a global variable, another program) would
+          // make two objects share storage.
+          if (!out_.image.find(asciiUpper(pc.name.name)))
             place(pc.name.name, p->type, nullptr, pc.retain, false, false);
+          else if (!equalsIgnoreCase(pc.name.name, p->name))
+            error(pc.name.range, "program instance '" + pc.name.name +
+                                     "' has the name of a global variable or program; instance names must be unique");
+        }
   // VAR_STAT and AT views of POUs.
   for (Symbol* p : model_.pous) {
     if (!p->pou || !p->pou->decl) continue;
