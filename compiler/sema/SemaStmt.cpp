@@ -438,6 +438,13 @@ void SemaImpl::checkConfiguration(ConfigurationDecl* c, const Context& ctx) {
         d.range(p.task.range);
         if (!hint.empty()) d.fixit(p.task.range, hint);
       }
+      // A program instance shares the global name space: a global variable of the same name
+      // would be two objects under one name.
+      for (auto& [g, gctx] : globalDecls_)
+        for (const VarDecl* v : g->block.vars)
+          if (upperCase(v->name.name) == upperCase(p.name.name))
+            diags_.error(p.name.range.begin, "program instance '" + p.name.name + "' has the name of a global variable", "redefinition")
+                .range(p.name.range).note(v->name.range.begin, "the global variable is declared here", v->name.range);
       Symbol* prog = lookupQualified(p.type, ctx.outer, true, "program");
       if (!prog) continue;
       if (prog->kind != Symbol::Program) {
