@@ -381,6 +381,12 @@ bool resolvePath(const codegen::ImageMap& map, const sema::Layout& layout, const
     error = "no variable named '" + segs[0].name + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?");
     return false;
   }
+  if (!root->runsAs.empty()) {
+    error = "'" + root->path + "' is the PROGRAM's own instance, which never runs: the configuration runs it as '" +
+            root->runsAs + "' (e.g. '" + root->runsAs.substr(0, root->runsAs.find(',')) +
+            path.substr(std::min(path.size(), root->path.size())) + "')";
+    return false;
+  }
   uint64_t off = root->offset;
   const Type* t = root->type;
   out.retain = root->retain;

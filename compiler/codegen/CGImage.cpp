@@ -127,6 +127,24 @@ void CodeGen::layoutImage() {
             error(pc.name.range, "program instance '" + pc.name.name +
                                      "' has the name of a global variable or program; instance names must be unique");
         }
+  // A program the configurations run only under other instance names, and that
+  // no POU calls: its own instance never runs; paths through it get a hint.
+  if (!model_.configurations.empty())
+    for (Symbol* p : model_.pous) {
+      if (p->kind != Symbol::Program || model_.calledPrograms.count(p)) continue;
+      std::string others;
+      bool self = false;
+      for (ConfigurationDecl* c : model_.configurations)
+        for (const ResourceDecl& r : c->resources)
+          for (const ProgramConfig& pc : r.programs)
+            if (equalsIgnoreCase(p->name, pc.type.parts.back().name)) {
+              if (equalsIgnoreCase(pc.name.name, p->name)) self = true;
+              else others += (others.empty() ? "" : ", ") + pc.name.name;
+            }
+      if (self || others.empty()) continue;
+      for (ImageRoot& r : out_.image.roots)
+        if (!r.alias && equalsIgnoreCase(r.path, p->name)) r.runsAs = others;
+    }
   // VAR_STAT and AT views of POUs.
   for (Symbol* p : model_.pous) {
     if (!p->pou || !p->pou->decl) continue;

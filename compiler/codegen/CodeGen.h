@@ -49,6 +49,9 @@ struct ImageRoot {
   const sema::Type* type = nullptr;
   bool retain = false, persistent = false, constant = false, alias = false;   // alias: another name of an earlier root
   int bit = -1;                // a BOOL view of one bit (AT %IX1.2)
+  // A PROGRAM's own instance that never runs: the configuration runs the program
+  // only under these instance names (paths through it are refused with a hint).
+  std::string runsAs;
 };
 
 struct ImageMap {

@@ -3,6 +3,7 @@
 // the Sema that produced it lives (the Compilation owns both).
 #pragma once
 
+#include <set>
 #include <vector>
 
 #include "ast/AST.h"
@@ -32,6 +33,8 @@ struct Model {
   std::vector<Symbol*> pous;
   std::vector<ast::GlobalVarDecl*> globalLists;     // VAR_GLOBAL blocks (GVLs), source order
   std::vector<ast::ConfigurationDecl*> configurations;
+  // PROGRAMs some POU calls (their own instance then runs, whatever the configuration says).
+  std::set<const Symbol*> calledPrograms;
   // Symbol of a POU's own name, for each POU declaration.
   Symbol* symbolOf(const ast::PouDecl* d) const { return d ? d->symbol : nullptr; }
 };

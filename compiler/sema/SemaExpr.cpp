@@ -1158,6 +1158,7 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
 }
 
 const Type* SemaImpl::callPou(CallExpr* e, Symbol* target, const Context& ctx, const std::string& displayName, bool instanceCall) {
+  if (target && target->kind == Symbol::Program) model_.calledPrograms.insert(target);
   resolveSignature(target);
   e->target = target;
   std::vector<Symbol*> params;
