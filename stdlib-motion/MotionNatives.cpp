@@ -19,6 +19,7 @@ struct Registry {
   std::vector<std::function<void(Axis&)>> mirrors;
   std::vector<std::pair<std::string, std::function<void(void*, Axis&)>>> binders;
   std::vector<std::function<void()>> resets;
+  VendorProfile profile;
 };
 Registry& reg() {
   static Registry r;
@@ -33,6 +34,7 @@ void onStepped(Axis& ax) {
 bool start(const vm::StartCtx& sc, std::string& error) {
   Kernel& k = kernel();
   k.reset();
+  k.profile = reg().profile;
   k.axisStepped = &onStepped;
   for (auto& r : reg().resets) r();
   for (const AxisConfig& cfg : reg().projectAxes) {
@@ -69,6 +71,13 @@ bool start(const vm::StartCtx& sc, std::string& error) {
 }  // namespace
 
 void setProjectAxes(std::vector<AxisConfig> axes) { reg().projectAxes = std::move(axes); }
+void setVendorProfile(const VendorProfile& p) { reg().profile = p; }
+
+VendorProfile defaultVendorProfile(const std::vector<std::string>& libraries) {
+  VendorProfile p;
+  VendorProfile::named(std::find(libraries.begin(), libraries.end(), "leadshine") != libraries.end() ? "leadshine_pmc600" : "amc1600c", p);
+  return p;
+}
 void addAxisMirror(std::function<void(Axis&)> fn) { reg().mirrors.push_back(std::move(fn)); }
 void addAxisBinder(std::string typeName, std::function<void(void*, Axis&)> fn) { reg().binders.emplace_back(std::move(typeName), std::move(fn)); }
 void addResetHook(std::function<void()> fn) { reg().resets.push_back(std::move(fn)); }
@@ -121,6 +130,26 @@ bool faultKindNamed(std::string_view name, FaultKind& out) {
 
 const char* faultKindNames() {
   return "drive_error, communication_lost, communication_restored, limit_positive, limit_negative or limits_released";
+}
+
+bool loadProjectVendorProfile(const std::string& dir, const std::vector<std::string>& libraries, VendorProfile& out,
+                              std::string& error) {
+  std::vector<std::string> libs = libraries;
+  std::string file;
+  toml::table tbl;
+  projectTables(dir, "project", tbl, file);
+  if (const toml::array* a = tbl["project"]["libraries"].as_array())
+    for (const toml::node& n : *a)
+      if (auto s = n.value<std::string>()) libs.push_back(*s);
+  out = defaultVendorProfile(libs);
+  if (const toml::node* n = tbl["project"]["motion_profile"].node()) {
+    auto name = n->value<std::string>();
+    if (!name || !VendorProfile::named(*name, out)) {
+      error = where(file, *n) + "[project] motion_profile must be \"amc1600c\" or \"leadshine_pmc600\"";
+      return false;
+    }
+  }
+  return true;
 }
 
 bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error) {

@@ -21,6 +21,15 @@ void setProjectAxes(std::vector<AxisConfig> axes);
 // (file:line:col: message) on a bad table; no file or no table is fine.
 bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error);
 
+// The vendor profile of the run (docs/motion.md, "Vendor profiles").  From project.toml:
+// [project] motion_profile = "amc1600c" | "leadshine_pmc600"; without it, leadshine_pmc600
+// when the project uses the leadshine library, else amc1600c.  `libraries` are those of the
+// command line (added to the project's).
+bool loadProjectVendorProfile(const std::string& dir, const std::vector<std::string>& libraries, VendorProfile& out,
+                              std::string& error);
+VendorProfile defaultVendorProfile(const std::vector<std::string>& libraries);
+void setVendorProfile(const VendorProfile& p);
+
 // Simulated I/O devices ([[io]] tables of project.toml, docs/projects.md).
 struct IoDevice {
   enum class Kind : uint8_t { AxisWindow, Delay };

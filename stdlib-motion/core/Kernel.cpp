@@ -9,6 +9,16 @@
 
 namespace stc::motion {
 
+bool VendorProfile::named(std::string_view name, VendorProfile& out) {
+  out = VendorProfile{};
+  if (name == "amc1600c") return true;   // its manual: jog Busy falls at release
+  if (name == "leadshine_pmc600") {
+    out.jogBusyEndsAtRelease = false;    // the manual is silent: CODESYS SoftMotion's rule
+    return true;
+  }
+  return false;
+}
+
 Kernel& kernel() {
   static Kernel k;
   return k;
@@ -683,6 +693,13 @@ void Kernel::onReached(Axis& ax, int64_t nowNs, uint64_t cycle, double overshoot
   FbSlot* fb = ax.controller;
   if (!fb) return;
   if (fb->behaviour) return fb->behaviour->reached(*this, *fb, ax, nowNs, cycle, overshoot);
+  if (fb->kind == FbKind::Jog && fb->levelDir == 0) {
+    // A released jog whose Busy lasts until standstill (vendor profile): it ends here.
+    ax.controller = nullptr;
+    fb->out.busy = fb->out.active = fb->out.inState = false;
+    fb->sync();
+    return;
+  }
   switch (fb->kind) {
     case FbKind::MoveVelocity:
     case FbKind::Jog:

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "stdlib-motion/core/Axis.h"
@@ -16,12 +17,15 @@
 
 namespace stc::motion {
 
-// Vendor differences are data.
+// Vendor differences are data (docs/motion.md, "Vendor profiles").
 struct VendorProfile {
-  // MC_Jog: Busy falls with the jog input (manual) rather than when the axis stops (CODESYS).
+  // MC_Jog: Busy falls with the jog input (AMC1600C manual) rather than when the axis
+  // has stopped (CODESYS SoftMotion, used where a manual is silent).
   bool jogBusyEndsAtRelease = true;
   // Motion commands accepted while the axis is synchronized (aborting the coupling).
   bool movesAbortSynchronized = true;
+  // The profile of an instruction set by its name: "amc1600c", "leadshine_pmc600"; false if unknown.
+  static bool named(std::string_view name, VendorProfile& out);
 };
 
 // Where and when an FB is being called.

@@ -432,6 +432,12 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
     return false;
   }
   motion::setProjectIo(std::move(ios));
+  motion::VendorProfile vendor;
+  if (!motion::loadProjectVendorProfile(pr.dir, {}, vendor, err)) {
+    report += "  " + err + "\n";
+    return false;
+  }
+  motion::setVendorProfile(vendor);
   for (const FaultStep& f : sc.faults) {
     auto ax = std::find_if(axes.begin(), axes.end(), [&](const motion::AxisConfig& a) { return equalsIgnoreCase(a.name, f.axis); });
     if (ax == axes.end()) {

@@ -301,6 +301,18 @@ int runRun(const BuildArgs& a) {
   }
   motion::setProjectAxes(std::move(axes));
   motion::setProjectIo(std::move(ios));
+  // The vendor profile: the project's, else by the libraries used.
+  motion::VendorProfile vendor = motion::defaultVendorProfile(a.libs);
+  for (const std::string& p : a.paths) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(p, ec)) continue;
+    std::string err;
+    if (!motion::loadProjectVendorProfile(p, a.libs, vendor, err)) {
+      std::cerr << "stc: error: " << err << "\n";
+      return 1;
+    }
+  }
+  motion::setVendorProfile(vendor);
   vm::Controller ctl(*c.model(), c.diags());
   std::string err;
   size_t before = c.diags().diagnostics().size();

@@ -467,3 +467,30 @@ TEST(MotionKernel, OverrideScalesTheRunningMoveAlongItsPath) {
   EXPECT_EQ(n, 4101u);   // steps at profile times 6.0005, 6.0015 ...: 10.1 is passed in the 4101st
   EXPECT_EQ(s.ax->set().p, 100.0);
 }
+
+// The Leadshine profile (CODESYS rule): a released jog stays Busy until the axis has stopped.
+TEST(MotionKernel, JogBusyUntilStandstillInTheLeadshineProfile) {
+  Sim s;
+  ASSERT_TRUE(VendorProfile::named("leadshine_pmc600", s.k.profile));
+  FbSlot& p = s.slot(FbKind::Power);
+  FbSlot& j = s.slot(FbKind::Jog);
+  s.powerOn(p);
+  MoveInputs in = absolute(0, 100, 1000, 1000);
+  for (int i = 0; i < 500; ++i) {   // 0.1 s ramp, then at 100 u/s
+    s.k.callJog(j, *s.ax, true, false, in, s.ctx());
+    s.endCycle();
+  }
+  s.k.callJog(j, *s.ax, false, false, in, s.ctx());   // release: brake 0.1 s
+  EXPECT_TRUE(j.out.busy);
+  int n = 0;
+  while (j.out.busy && n < 1000) {
+    s.endCycle();
+    s.k.callJog(j, *s.ax, false, false, in, s.ctx());
+    ++n;
+  }
+  EXPECT_EQ(n, 101);   // the stop ends in the 101st step (t = 0 .. 0.1 s after the release)
+  EXPECT_EQ(s.ax->set().v, 0);
+  EXPECT_EQ(s.ax->state(), AxisState::Standstill);
+  EXPECT_FALSE(j.out.aborted);
+  EXPECT_FALSE(j.out.error);
+}
