@@ -5,18 +5,14 @@
 
 namespace stc::motion {
 
-namespace {
 // The drive's homing set point continued at its velocity: what a command
 // that takes over between two cycles (MC_Stop) starts from.
-class Coast final : public Generator {
+class HomingCoast final : public Generator {
 public:
-  Coast(double p, double v) : p_(p), v_(v) {}
-  Kinematic at(double t) const override { return Kinematic{p_ + v_ * t, v_, 0}; }
+  double p = 0, v = 0;
+  Kinematic at(double t) const override { return Kinematic{p + v * t, v, 0}; }
   double duration() const override { return 0; }
-private:
-  double p_, v_;
 };
-}  // namespace
 
 Axis::Axis(AxisConfig cfg, uint32_t index) : cfg_(std::move(cfg)), index_(index), drive_(cfg_.drive) {}
 
@@ -283,7 +279,10 @@ StepResult Axis::step(int64_t nowNs, double dt) {
     lastCommandedTarget = h.p;
     if (h.v != 0) {
       mv_.kind = Movement::Kind::External;
-      mv_.gen = std::make_shared<Coast>(h.p, h.v);
+      if (!homingCoast_) homingCoast_ = std::make_shared<HomingCoast>();   // reused: no allocation per cycle
+      homingCoast_->p = h.p;
+      homingCoast_->v = h.v;
+      mv_.gen = homingCoast_;
       mv_.originNs = nowNs;
       mv_.originFrac = 0;
       mv_.rate = 1;

@@ -54,6 +54,7 @@ struct AxisConfig {
 };
 
 class FbSlot;
+class HomingCoast;   // Axis.cpp: the drive's homing set point as a movement
 
 // The last error an FB reported on an axis (SMC_ReadFBError; SMC_ClearFBError clears it).
 struct FbErrorRecord {
@@ -212,6 +213,7 @@ private:
   Movement mv_, sup_;
   double offset_ = 0;                    // MC_SetPosition shifts and finished superimposed moves
   double override_ = 1;                  // setOverride
+  std::shared_ptr<HomingCoast> homingCoast_;   // the drive's homing set point as a movement (Axis.cpp)
   Kinematic supState_;                   // contribution of the superimposed move in progress
   Limits lastLimits_{1, 1, 1, 0};
   Drive drive_;

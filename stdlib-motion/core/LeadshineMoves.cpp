@@ -332,7 +332,7 @@ public:
     addLeft = 0;
     prevNs = nowNs;
     encStart = encoder->actPosition() * encoder->config().drive.incrementsPerUnit;
-    ax.startExternal(std::make_shared<Hold>(filtered, 0), nowNs);
+    hold(filtered, 0, ax, nowNs);
     ax.setState(AxisState::SynchronizedMotion);
   }
   void beforeStep(Kernel&, FbSlot&, Axis& ax, int64_t nowNs, uint64_t) override {
@@ -345,17 +345,25 @@ public:
     lastDelta = filtered - prev;
     const double dt = prevNs > 0 && nowNs > prevNs ? static_cast<double>(nowNs - prevNs) * 1e-9 : 0;
     prevNs = nowNs;
-    ax.startExternal(std::make_shared<Hold>(filtered, dt > 0 ? lastDelta / dt : 0), nowNs);
+    hold(filtered, dt > 0 ? lastDelta / dt : 0, ax, nowNs);
   }
   void reached(Kernel&, FbSlot&, Axis&, int64_t, uint64_t, double) override {}
 
-  // A set point that stays at p (the next cycle replaces it).
+  // The set point of this cycle: stays at p until the next cycle replaces it.  One
+  // generator per FB, updated in place (no allocation in the cycle).
+  void hold(double p, double v, Axis& ax, int64_t nowNs) {
+    if (!holdGen) holdGen = std::make_shared<Hold>(p, v);
+    holdGen->p = p;
+    holdGen->v = v;
+    ax.startExternal(holdGen, nowNs);
+  }
   struct Hold : Generator {
     double p, v;
     Hold(double pos, double vel) : p(pos), v(vel) {}
     Kinematic at(double) const override { return Kinematic{p, v, 0}; }
     double duration() const override { return INFINITY; }
   };
+  std::shared_ptr<Hold> holdGen;
 };
 
 }  // namespace
