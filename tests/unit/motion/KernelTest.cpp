@@ -494,3 +494,27 @@ TEST(MotionKernel, JogBusyUntilStandstillInTheLeadshineProfile) {
   EXPECT_FALSE(j.out.aborted);
   EXPECT_FALSE(j.out.error);
 }
+
+// The lag drive model on a ramp of acceleration A: the motor follows the set point with the
+// closed-form error A * lag_time / kv once the transient has died out (and never leads it).
+TEST(MotionDrive, LagModelFollowingErrorOnARamp) {
+  DriveConfig cfg;
+  cfg.kind = AxisKind::Virtual;
+  cfg.model = DriveModel::Lag;
+  cfg.kv = 100;
+  cfg.lagTime = 0.002;
+  Drive d(cfg);
+  d.setControlword(0x06);
+  d.settle();
+  d.setControlword(0x0F);
+  d.settle();
+  ASSERT_TRUE(d.operationEnabled());
+  const double A = 1000, dt = 0.001;
+  for (int k = 0; k <= 1000; ++k) {
+    const double t = k * dt;
+    d.cycle(A * t * t / 2, A * t, A, dt, static_cast<int64_t>(k) * 1'000'000);
+    ASSERT_GE(A * t * t / 2 - d.actPosition(), -1e-12) << "cycle " << k;   // never ahead
+  }
+  EXPECT_NEAR(1000 * 0.5 - d.actPosition(), A * 0.002 / 100, 1e-6);     // 0.02
+  EXPECT_NEAR(d.actVelocity(), A * 1.0, 1e-6);
+}
