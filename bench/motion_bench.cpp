@@ -53,42 +53,31 @@ void BM_PlanJerkRestToRest(benchmark::State& st) {
 }
 BENCHMARK(BM_PlanJerkRestToRest);
 
-void BM_PlanJerkArbitraryState(benchmark::State& st) {
-  const auto cs = makeCases(kJerk, 4096);
+// Plans `plan(case, profile)` over 4096 pre-generated random cases, round robin.
+template <class Plan>
+void planCases(benchmark::State& st, const Limits& lim, Plan plan) {
+  const auto cs = makeCases(lim, 4096);
   Profile p;
   size_t i = 0;
   for (auto _ : st) {
-    const Case& c = cs[i];
-    benchmark::DoNotOptimize(planPosition(c.s, c.target, c.vEnd, kJerk, p));
+    benchmark::DoNotOptimize(plan(cs[i], p));
     benchmark::DoNotOptimize(p);
     i = (i + 1) & 4095;
   }
+}
+
+void BM_PlanJerkArbitraryState(benchmark::State& st) {
+  planCases(st, kJerk, [](const Case& c, Profile& p) { return planPosition(c.s, c.target, c.vEnd, kJerk, p); });
 }
 BENCHMARK(BM_PlanJerkArbitraryState);
 
 void BM_PlanJerkVelocity(benchmark::State& st) {
-  const auto cs = makeCases(kJerk, 4096);
-  Profile p;
-  size_t i = 0;
-  for (auto _ : st) {
-    const Case& c = cs[i];
-    benchmark::DoNotOptimize(planVelocity(c.s, c.vEnd, kJerk, p));
-    benchmark::DoNotOptimize(p);
-    i = (i + 1) & 4095;
-  }
+  planCases(st, kJerk, [](const Case& c, Profile& p) { return planVelocity(c.s, c.vEnd, kJerk, p); });
 }
 BENCHMARK(BM_PlanJerkVelocity);
 
 void BM_PlanTrapezoidal(benchmark::State& st) {
-  const auto cs = makeCases(kTrap, 4096);
-  Profile p;
-  size_t i = 0;
-  for (auto _ : st) {
-    const Case& c = cs[i];
-    benchmark::DoNotOptimize(planPosition(c.s, c.target, c.vEnd, kTrap, p));
-    benchmark::DoNotOptimize(p);
-    i = (i + 1) & 4095;
-  }
+  planCases(st, kTrap, [](const Case& c, Profile& p) { return planPosition(c.s, c.target, c.vEnd, kTrap, p); });
 }
 BENCHMARK(BM_PlanTrapezoidal);
 
