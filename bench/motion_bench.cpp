@@ -102,7 +102,7 @@ BENCHMARK(BM_SampleProfile);
 static void BM_KernelCycle1000Axes(benchmark::State& state) {
   using namespace stc::motion;
   const int n = static_cast<int>(state.range(0));
-  Kernel& k = kernel();
+  Kernel k;
   k.reset();
   std::vector<uint64_t> handles(2 * n, 0);
   std::vector<FbSlot*> moves;

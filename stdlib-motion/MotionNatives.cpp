@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <toml++/toml.h>
 
 #include "stdlib-motion/ProjectToml.h"
@@ -13,31 +14,40 @@
 namespace stc::motion {
 
 namespace {
+const char kSessionKey = 0;
+}  // namespace
 
-struct Registry {
-  std::vector<AxisConfig> projectAxes;
-  std::vector<std::function<void(Axis&)>> mirrors;
-  std::vector<std::pair<std::string, std::function<void(void*, Axis&)>>> binders;
-  std::vector<std::function<void()>> resets;
-  VendorProfile profile;
-};
-Registry& reg() {
-  static Registry r;
-  return r;
+MotionLibrary::MotionLibrary(MotionConfig cfg) : cfg_(std::move(cfg)) { registerSm3Natives(*this); }
+
+const void* MotionLibrary::sessionKey() const { return &kSessionKey; }
+std::unique_ptr<vm::NativeSession> MotionLibrary::newSession() const { return std::make_unique<MotionSession>(*this, cfg_); }
+
+bool MotionLibrary::readProject(const std::string& dir, const std::vector<std::string>& libraries, std::string& error) {
+  return loadProjectAxes(dir, cfg_.axes, error) && loadProjectIo(dir, cfg_.io, error) &&
+         loadProjectVendorProfile(dir, libraries, cfg_.profile, error);
 }
 
-void onStepped(Axis& ax) {
-  for (auto& m : reg().mirrors) m(ax);
+MotionSession::MotionSession(const MotionLibrary& lib, const MotionConfig& cfg) : lib_(lib), cfg_(cfg) {
+  kernel.profile = cfg_.profile;
+}
+
+MotionSession& MotionSession::current() {
+  auto* s = static_cast<MotionSession*>(vm::currentSession(&kSessionKey));
+  if (!s) throw std::logic_error("a motion native was called outside a controller with the motion library");
+  return *s;
+}
+
+Kernel& kernel() { return MotionSession::current().kernel; }
+
+void MotionSession::bindVar(const Axis& ax, void* var, void (*mirrorFn)(const Axis&, void*)) {
+  if (axisVars.size() <= ax.index()) axisVars.resize(ax.index() + 1);
+  axisVars[ax.index()] = AxisVar{var, mirrorFn};
 }
 
 // Binds every configured axis to its AXIS_REF variable and task.
-bool start(const vm::StartCtx& sc, std::string& error) {
-  Kernel& k = kernel();
-  k.reset();
-  k.profile = reg().profile;
-  k.axisStepped = &onStepped;
-  for (auto& r : reg().resets) r();
-  for (const AxisConfig& cfg : reg().projectAxes) {
+bool MotionSession::start(const vm::StartCtx& sc, std::string& error) {
+  Kernel& k = kernel;
+  for (const AxisConfig& cfg : cfg_.axes) {
     std::string type;
     void* ref = sc.lookup(cfg.name, type);
     if (!ref) {
@@ -45,8 +55,9 @@ bool start(const vm::StartCtx& sc, std::string& error) {
               " : AXIS_REF_SM3;' in a VAR_GLOBAL, or add the library that declares the axis type)";
       return false;
     }
-    auto b = std::find_if(reg().binders.begin(), reg().binders.end(), [&](auto& p) { return p.first == type; });
-    if (b == reg().binders.end()) {
+    const auto& faces = lib_.axisFaces();
+    auto f = std::find_if(faces.begin(), faces.end(), [&](const AxisFace& p) { return p.typeName == type; });
+    if (f == faces.end()) {
       error = "project.toml: axis '" + cfg.name + "' is a " + type + ", not an axis type of a motion library";
       return false;
     }
@@ -63,24 +74,27 @@ bool start(const vm::StartCtx& sc, std::string& error) {
       return false;
     }
     ax.task = task;
-    b->second(ref, ax);
+    bindVar(ax, ref, f->mirror);
+    f->bound(ref, ax);
+    mirror(ax);
   }
-  return true;
+  io_ = startIo(sc, cfg_.io, k, error);
+  return io_ != nullptr;
 }
 
-}  // namespace
-
-void setProjectAxes(std::vector<AxisConfig> axes) { reg().projectAxes = std::move(axes); }
-void setVendorProfile(const VendorProfile& p) { reg().profile = p; }
+void MotionSession::cycle(const vm::HookCtx& c) {
+  kernel.cycle(c.task, c.now, c.interval, c.cycle);
+  for (size_t i = 0; i < axisVars.size(); ++i)
+    if (Axis* ax = kernel.axis(static_cast<uint32_t>(i)); ax && ax->task == c.task) mirror(*ax);
+  // The devices read the axes stepped above; the programs see them in their next cycle.
+  cycleIo(*io_, c.now);
+}
 
 VendorProfile defaultVendorProfile(const std::vector<std::string>& libraries) {
   VendorProfile p;
   VendorProfile::named(std::find(libraries.begin(), libraries.end(), "leadshine") != libraries.end() ? "leadshine_pmc600" : "amc1600c", p);
   return p;
 }
-void addAxisMirror(std::function<void(Axis&)> fn) { reg().mirrors.push_back(std::move(fn)); }
-void addAxisBinder(std::string typeName, std::function<void(void*, Axis&)> fn) { reg().binders.emplace_back(std::move(typeName), std::move(fn)); }
-void addResetHook(std::function<void()> fn) { reg().resets.push_back(std::move(fn)); }
 
 CallCtx callContext() {
   CallCtx c;
@@ -92,16 +106,6 @@ CallCtx callContext() {
     c.intervalNs = t.kind == vm::TaskKind::Cyclic ? t.interval : s->baseTick();
   }
   return c;
-}
-
-void registerMotionNatives() {
-  static bool done = false;
-  if (done) return;
-  done = true;
-  vm::nativeRegistry().addCycleHook({"motion", [](const vm::HookCtx& c) { kernel().cycle(c.task, c.now, c.interval, c.cycle); }});
-  vm::nativeRegistry().addStartHook({"motion", &start});
-  registerSm3Natives();
-  registerProjectIo();   // after the motion hooks: its sensors read the axes bound and stepped there
 }
 
 // ---------------------------------------------------------------- project.toml

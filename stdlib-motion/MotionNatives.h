@@ -1,34 +1,19 @@
-// The controller side of the motion library: registers the kernel's cycle
-// hook and start hook and the vendor faces' natives; holds the axes that
-// project.toml configures.  See docs/motion.md.
+// The controller side of the motion library: the native library that the
+// stc tool hands to the controller (the vendor faces' natives, the
+// project.toml tables it reads) and the per-controller session (the kernel,
+// the axes bound to their ST variables, the simulated devices).  See docs/motion.md.
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "stdlib-motion/core/Kernel.h"
+#include "vm/Native.h"
 
 namespace stc::motion {
-
-// Registers everything (idempotent).  Called by the controller at load.
-void registerMotionNatives();
-
-// The axes of the project being run ([[axis]] tables of project.toml).
-void setProjectAxes(std::vector<AxisConfig> axes);
-// Reads the [[axis]] tables of `dir`/project.toml.  False with `error`
-// (file:line:col: message) on a bad table; no file or no table is fine.
-bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error);
-
-// The vendor profile of the run (docs/motion.md, "Vendor profiles").  From project.toml:
-// [project] motion_profile = "amc1600c" | "leadshine_pmc600"; without it, leadshine_pmc600
-// when the project uses the leadshine library, else amc1600c.  `libraries` are those of the
-// command line (added to the project's).
-bool loadProjectVendorProfile(const std::string& dir, const std::vector<std::string>& libraries, VendorProfile& out,
-                              std::string& error);
-VendorProfile defaultVendorProfile(const std::vector<std::string>& libraries);
-void setVendorProfile(const VendorProfile& p);
 
 // Simulated I/O devices ([[io]] tables of project.toml, docs/projects.md).
 struct IoDevice {
@@ -40,9 +25,98 @@ struct IoDevice {
   std::string source;              // Delay: var follows this BOOL variable `delayNs` later
   int64_t delayNs = 0;
 };
+
+// What a run's motion needs from project.toml and the command line.
+struct MotionConfig {
+  std::vector<AxisConfig> axes;    // [[axis]]
+  std::vector<IoDevice> io;        // [[io]]
+  VendorProfile profile;           // [project] motion_profile, else by the libraries used
+};
+
+// How a face binds a configured axis to an axis variable of its type (e.g.
+// AXIS_REF_SM3) and mirrors the kernel's axis into that variable.
+struct AxisFace {
+  std::string typeName;
+  void (*mirror)(const Axis& ax, void* var) = nullptr;
+  void (*bound)(void* var, const Axis& ax) = nullptr;   // writes the binding into the variable
+};
+
+// The motion library as the controller sees it: the natives of every face
+// (codesys_sm3, leadshine) and, per controller, a MotionSession.
+class MotionLibrary : public vm::NativeLibrary {
+public:
+  explicit MotionLibrary(MotionConfig cfg = {});
+  std::string_view name() const override { return "motion"; }
+  const std::vector<vm::NativeEntry>& natives() const override { return natives_; }
+  const void* sessionKey() const override;
+  std::unique_ptr<vm::NativeSession> newSession() const override;
+
+  MotionConfig& config() { return cfg_; }
+  // Adds the [[axis]] and [[io]] tables and the vendor profile of the project
+  // directory `dir` (libraries: those of the command line).  False with
+  // `error` (file:line:col: message).
+  bool readProject(const std::string& dir, const std::vector<std::string>& libraries, std::string& error);
+
+  // For the faces' registration functions.
+  void add(vm::NativeEntry e) { natives_.push_back(std::move(e)); }
+  void addAxisFace(AxisFace f) { faces_.push_back(std::move(f)); }
+  const std::vector<AxisFace>& axisFaces() const { return faces_; }
+
+private:
+  MotionConfig cfg_;
+  std::vector<vm::NativeEntry> natives_;
+  std::vector<AxisFace> faces_;
+};
+
+struct IoRuntime;   // ProjectIo.cpp
+
+// One controller's motion: the kernel, its axes and the ST variables they are bound to.
+class MotionSession : public vm::NativeSession {
+public:
+  MotionSession(const MotionLibrary& lib, const MotionConfig& cfg);
+  bool start(const vm::StartCtx& sc, std::string& error) override;
+  void cycle(const vm::HookCtx& c) override;
+
+  // The session of the controller whose code is running (natives only).
+  static MotionSession& current();
+
+  Kernel kernel;
+  // The axis variable each kernel axis is bound to, by axis index.
+  struct AxisVar {
+    void* var = nullptr;
+    void (*mirror)(const Axis& ax, void* var) = nullptr;
+  };
+  std::vector<AxisVar> axisVars;
+  void bindVar(const Axis& ax, void* var, void (*mirror)(const Axis&, void*));
+  void mirror(const Axis& ax) {
+    if (ax.index() < axisVars.size() && axisVars[ax.index()].mirror) axisVars[ax.index()].mirror(ax, axisVars[ax.index()].var);
+  }
+
+private:
+  const MotionLibrary& lib_;
+  MotionConfig cfg_;
+  std::shared_ptr<IoRuntime> io_;
+};
+
+// The kernel of the calling controller (MotionSession::current().kernel).
+Kernel& kernel();
+
+// The axes of the project ([[axis]] tables of `dir`/project.toml).  False with
+// `error` (file:line:col: message) on a bad table; no file or no table is fine.
+bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error);
+
+// The vendor profile of the run (docs/motion.md, "Vendor profiles").  From project.toml:
+// [project] motion_profile = "amc1600c" | "leadshine_pmc600"; without it, leadshine_pmc600
+// when the project uses the leadshine library, else amc1600c.  `libraries` are those of the
+// command line (added to the project's).
+bool loadProjectVendorProfile(const std::string& dir, const std::vector<std::string>& libraries, VendorProfile& out,
+                              std::string& error);
+VendorProfile defaultVendorProfile(const std::vector<std::string>& libraries);
+
 bool loadProjectIo(const std::string& dir, std::vector<IoDevice>& out, std::string& error);
-void setProjectIo(std::vector<IoDevice> devices);
-void registerProjectIo();
+// ProjectIo.cpp: binds the devices at start; evaluates them after each task slot.
+std::shared_ptr<IoRuntime> startIo(const vm::StartCtx& sc, const std::vector<IoDevice>& devices, Kernel& k, std::string& error);
+void cycleIo(IoRuntime& io, int64_t nowNs);
 
 // Fault kinds by their project.toml / scenario names (drive_error ...); false when unknown.
 bool faultKindNamed(std::string_view name, FaultKind& out);
@@ -52,12 +126,7 @@ const char* faultKindNames();
 // The task, cycle and time of the FB call in progress.
 CallCtx callContext();
 
-// For the faces: mirror an axis into its ST variable after each step; bind a
-// configured axis to the ST variable of the given type; forget bindings at a new run.
-void addAxisMirror(std::function<void(Axis&)> fn);
-void addAxisBinder(std::string typeName, std::function<void(void* ref, Axis& ax)> fn);
-void addResetHook(std::function<void()> fn);
-
-void registerSm3Natives();
+// The faces' registration (codesys_sm3/Sm3Natives.cpp and the family files).
+void registerSm3Natives(MotionLibrary& lib);
 
 }  // namespace stc::motion

@@ -25,16 +25,6 @@ struct Bound {
   bool last = false;
 };
 
-struct IoState {
-  std::vector<IoDevice> devices;
-  std::vector<Bound> bound;
-};
-
-IoState& io() {
-  static IoState s;
-  return s;
-}
-
 bool boolVar(const vm::StartCtx& sc, const std::string& path, const char* what, vm::StartCtx::BoolTarget& out, std::string& error) {
   if (sc.lookupBool(path, out)) return true;
   error = std::string("project.toml: [[io]] ") + what + " '" + path + "' is no BOOL variable of the program";
@@ -47,30 +37,35 @@ void put(const vm::StartCtx::BoolTarget& t, bool v) {
   else *t.byte = static_cast<uint8_t>((*t.byte & ~(1u << t.bit)) | (static_cast<unsigned>(v) << t.bit));
 }
 
-bool startIo(const vm::StartCtx& sc, std::string& error) {
-  IoState& s = io();
-  s.bound.clear();
-  for (const IoDevice& d : s.devices) {
+}  // namespace
+
+struct IoRuntime {
+  std::vector<Bound> bound;
+};
+
+std::shared_ptr<IoRuntime> startIo(const vm::StartCtx& sc, const std::vector<IoDevice>& devices, Kernel& k, std::string& error) {
+  auto s = std::make_shared<IoRuntime>();
+  for (const IoDevice& d : devices) {
     Bound b;
     b.dev = d;
-    if (!boolVar(sc, d.var, "var", b.out, error)) return false;
+    if (!boolVar(sc, d.var, "var", b.out, error)) return nullptr;
     if (d.kind == IoDevice::Kind::AxisWindow) {
-      for (size_t i = 0; i < kernel().axisCount() && !b.axis; ++i)
-        if (Axis* a = kernel().axis(static_cast<uint32_t>(i)); a->config().name == d.axis) b.axis = a;
+      for (size_t i = 0; i < k.axisCount() && !b.axis; ++i)
+        if (Axis* a = k.axis(static_cast<uint32_t>(i)); a->config().name == d.axis) b.axis = a;
       if (!b.axis) {
         error = "project.toml: [[io]] '" + d.var + "': no [[axis]] named '" + d.axis + "'";
-        return false;
+        return nullptr;
       }
     } else if (!boolVar(sc, d.source, "source", b.source, error)) {
-      return false;
+      return nullptr;
     }
-    s.bound.push_back(std::move(b));
+    s->bound.push_back(std::move(b));
   }
-  return true;
+  return s;
 }
 
-void cycleIo(int64_t nowNs) {
-  for (Bound& b : io().bound) {
+void cycleIo(IoRuntime& io, int64_t nowNs) {
+  for (Bound& b : io.bound) {
     if (b.axis) {
       // The window is on the mechanics: coordinate shifts (homing, MC_SetPosition) do not move it.
       const double x = b.axis->actPosition() - b.axis->drive().coordinateShift();
@@ -86,10 +81,6 @@ void cycleIo(int64_t nowNs) {
     put(b.out, b.last);
   }
 }
-
-}  // namespace
-
-void setProjectIo(std::vector<IoDevice> devices) { io().devices = std::move(devices); }
 
 bool loadProjectIo(const std::string& dir, std::vector<IoDevice>& out, std::string& error) {
   std::string file;
@@ -134,11 +125,6 @@ bool loadProjectIo(const std::string& dir, std::vector<IoDevice>& out, std::stri
     out.push_back(std::move(d));
   }
   return true;
-}
-
-void registerProjectIo() {
-  vm::nativeRegistry().addStartHook({"project-io", &startIo});
-  vm::nativeRegistry().addCycleHook({"project-io", [](const vm::HookCtx& c) { cycleIo(c.now); }});
 }
 
 }  // namespace stc::motion

@@ -1,8 +1,5 @@
 #include "vm/Controller.h"
 
-#include "stdlib-motion/iec/StdNatives.h"
-#include "stdlib-motion/MotionNatives.h"
-
 #include <csignal>
 #include <cstring>
 #include <functional>
@@ -10,6 +7,7 @@
 #include <ostream>
 
 #include "ast/AST.h"
+#include "basic/Text.h"
 #include "sema/Model.h"
 #include "vm/Image.h"
 #include "vm/Jit.h"
@@ -33,13 +31,18 @@ extern "C" void onStopSignal(int) {
 Controller::Controller(const sema::Model& model, DiagnosticsEngine& diags) : model_(model), diags_(diags) {}
 Controller::~Controller() = default;
 
+const NativeEntry* Controller::findNative(std::string_view name) const {
+  for (const NativeLibrary* lib : libraries_)
+    for (const NativeEntry& e : lib->natives())
+      if (equalsIgnoreCase(e.name, name)) return &e;
+  return nullptr;
+}
+
 bool Controller::load(std::unique_ptr<codegen::CompiledModule> module, std::string& error) {
-  stdlib::registerStandardNatives();
-  motion::registerMotionNatives();
   module_ = std::move(module);
   auto symbols = runtimeSymbols();
   for (const codegen::CompiledModule::Native& n : module_->natives) {
-    const NativeEntry* e = nativeRegistry().find(n.name);
+    const NativeEntry* e = findNative(n.name);
     if (!e) {
       error = "'" + n.name + "' is declared {attribute 'native'} but this build has no implementation of it";
       return false;
@@ -68,8 +71,17 @@ bool Controller::load(std::unique_ptr<codegen::CompiledModule> module, std::stri
     }
     tasks_.push_back(std::move(rt));
   }
+  // Every library gets fresh state for this controller.
+  sessions_.clear();
+  sessionTable_.clear();
+  for (const NativeLibrary* lib : libraries_)
+    if (auto s = lib->newSession()) {
+      sessionTable_.emplace_back(lib->sessionKey(), s.get());
+      sessions_.push_back(std::move(s));
+    }
   // Cold start: the constant image is already in place; the initial values
   // that did not fold are computed now.
+  SessionScope scope(&sessionTable_);
   __stc_budget = INT64_MAX / 2;
   initDynamic_();
   return true;
@@ -155,7 +167,11 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
         [this, &im](uint32_t) {
           if (!outputs_.empty()) std::memcpy(outputs_.data(), image_ + im.outputOffset, outputs_.size());
         });
-  for (const NativeHook& h : nativeRegistry().cycleHooks()) sched_->addCycleHook(h.name, h.fn);
+  SessionScope scope(&sessionTable_);
+  for (size_t i = 0; i < sessions_.size(); ++i) {
+    NativeSession* s = sessions_[i].get();
+    sched_->addCycleHook("native-" + std::to_string(i), [s](const HookCtx& c) { s->cycle(c); });
+  }
   {
     StartCtx sc{*sched_, image_, [this, &layout](const std::string& path, std::string& typeName) -> void* {
                   ValueRef ref;
@@ -175,9 +191,9 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
                     out.byte = image_ + ref.offset;
                   return true;
                 }};
-    for (const NativeStartHook& h : nativeRegistry().startHooks()) {
+    for (const auto& s : sessions_) {
       std::string e;
-      if (!h.fn(sc, e)) {
+      if (!s->start(sc, e)) {
         err << "stc: error: " << e << "\n";
         return 1;
       }

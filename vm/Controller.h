@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "basic/Diagnostics.h"
@@ -20,6 +21,9 @@ namespace stc::sema { struct Model; class Type; }
 namespace stc::vm {
 
 class Jit;
+class NativeLibrary;
+struct NativeEntry;
+class NativeSession;
 class Scheduler;
 class TraceWriter;
 struct ValueRef;
@@ -48,6 +52,9 @@ class Controller {
 public:
   Controller(const sema::Model& model, DiagnosticsEngine& diags);
   ~Controller();
+  // The native libraries whose natives the program may call (before load();
+  // the libraries must outlive the controller).  Each gets its own session.
+  void addLibrary(const NativeLibrary& lib) { libraries_.push_back(&lib); }
   // JIT-compiles the module and performs a cold start.  False with `error`.
   bool load(std::unique_ptr<codegen::CompiledModule> module, std::string& error);
   // Runs; prints the watches to `out`.  Returns the exit status:
@@ -71,6 +78,7 @@ public:
   std::string valueText(const ValueRef& r) const;
 
 private:
+  const NativeEntry* findNative(std::string_view name) const;
   void reportFaults(std::ostream& err);
   const sema::Model& model_;
   DiagnosticsEngine& diags_;
@@ -86,6 +94,9 @@ private:
   std::vector<std::unique_ptr<TaskRuntime>> tasks_;
   std::function<void(Time)> tickFn_;       // trace sampling
   std::vector<uint8_t> inputs_, outputs_;
+  std::vector<const NativeLibrary*> libraries_;
+  std::vector<std::unique_ptr<NativeSession>> sessions_;
+  std::vector<std::pair<const void*, NativeSession*>> sessionTable_;   // for currentSession()
 };
 
 }  // namespace stc::vm

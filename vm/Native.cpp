@@ -1,20 +1,22 @@
 #include "vm/Native.h"
 
-#include "basic/Text.h"
 #include "vm/Scheduler.h"
 
 namespace stc::vm {
 
-const NativeEntry* NativeRegistry::find(std::string_view name) const {
-  for (const NativeEntry& e : entries_)
-    if (equalsIgnoreCase(e.name, name)) return &e;
+namespace {
+thread_local const SessionScope::Table* tSessions = nullptr;
+}  // namespace
+
+NativeSession* currentSession(const void* key) {
+  if (tSessions)
+    for (const auto& [k, s] : *tSessions)
+      if (k == key) return s;
   return nullptr;
 }
 
-NativeRegistry& nativeRegistry() {
-  static NativeRegistry r;
-  return r;
-}
+SessionScope::SessionScope(const Table* t) : prev_(tSessions) { tSessions = t; }
+SessionScope::~SessionScope() { tSessions = prev_; }
 
 void sleepFor(Time d) { Scheduler::current()->sleepFor(d); }
 void waitUntil(std::function<bool()> ready) { Scheduler::current()->waitUntil(std::move(ready)); }

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -27,22 +28,10 @@ struct NativeEntry {
   uint64_t hash;               // Layout::pouHash of the declaration it was built for
 };
 
-struct NativeLibrary {
-  std::string name;            // shown in diagnostics, e.g. "<testlib>"
-  std::string source;          // ST declarations
-};
-
-// A per-cycle hook of a native library (the motion kernel registers here):
-// runs after the programs of every task slot, also while the task is
-// suspended in a wait, in registration order.
-struct NativeHook {
-  std::string name;
-  std::function<void(const HookCtx&)> fn;
-};
-
-// A start hook of a native library: runs once per run, after the tasks are
-// built and before the first tick (the motion library binds the configured
-// axes to their AXIS_REF globals here).  Returning false stops the run.
+// The state one controller keeps for a native library (the motion kernel
+// and its axes, simulated devices ...): made at load, so two controllers in
+// one process never share it.  Natives reach the session of the controller
+// that calls them with currentSession().
 class Scheduler;
 struct StartCtx {
   Scheduler& scheduler;
@@ -58,30 +47,49 @@ struct StartCtx {
   };
   std::function<bool(const std::string& path, BoolTarget& out)> lookupBool;
 };
-struct NativeStartHook {
-  std::string name;
-  std::function<bool(const StartCtx&, std::string& error)> fn;
+
+class NativeSession {
+public:
+  virtual ~NativeSession() = default;
+  // Once per run, after the tasks are built and before the first tick (the
+  // motion library binds the configured axes to their AXIS_REF globals here).
+  // False stops the run with `error`.
+  virtual bool start(const StartCtx&, std::string& /*error*/) { return true; }
+  // After the programs of every task slot, also while the task is suspended in a wait.
+  virtual void cycle(const HookCtx&) {}
 };
 
-class NativeRegistry {
+// A native library as the controller sees it: the C++ bodies of its
+// {attribute 'native'} POUs (code, the same for every controller) and a
+// factory for its per-controller state.  The tool that builds a controller
+// hands it the libraries (Controller::addLibrary); vm/ knows none by name.
+class NativeLibrary {
 public:
-  void addStartHook(NativeStartHook h) { startHooks_.push_back(std::move(h)); }
-  const std::vector<NativeStartHook>& startHooks() const { return startHooks_; }
-  void add(NativeEntry e) { entries_.push_back(std::move(e)); }
-  void addCycleHook(NativeHook h) { hooks_.push_back(std::move(h)); }
-  const std::vector<NativeHook>& cycleHooks() const { return hooks_; }
-  void addLibrary(NativeLibrary lib) { libraries_.push_back(std::move(lib)); }
-  const NativeEntry* find(std::string_view name) const;
-  const std::vector<NativeLibrary>& libraries() const { return libraries_; }
+  virtual ~NativeLibrary() = default;
+  virtual std::string_view name() const = 0;
+  virtual const std::vector<NativeEntry>& natives() const = 0;
+  // The key natives pass to currentSession() to find this library's session.
+  virtual const void* sessionKey() const { return this; }
+  // A fresh session for one controller; null when the library keeps no state.
+  virtual std::unique_ptr<NativeSession> newSession() const { return nullptr; }
+};
+
+// The session that the controller running on this thread keeps under `key`
+// (null outside a controller's load or run, or when it has none).
+NativeSession* currentSession(const void* key);
+
+// Makes a controller's sessions current on this thread for the guard's life.
+class SessionScope {
+public:
+  using Table = std::vector<std::pair<const void*, NativeSession*>>;
+  explicit SessionScope(const Table* t);
+  ~SessionScope();
+  SessionScope(const SessionScope&) = delete;
+  SessionScope& operator=(const SessionScope&) = delete;
 
 private:
-  std::vector<NativeEntry> entries_;
-  std::vector<NativeLibrary> libraries_;
-  std::vector<NativeHook> hooks_;
-  std::vector<NativeStartHook> startHooks_;
+  const Table* prev_;
 };
-
-NativeRegistry& nativeRegistry();
 
 // For natives declared {attribute 'blocking'}: suspend the calling task
 // (its fiber) while the rest of the controller goes on.  A blocking native

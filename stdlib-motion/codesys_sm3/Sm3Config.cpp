@@ -125,7 +125,7 @@ void SMC_SetSoftwareLimits(sm3::SMC_SetSoftwareLimits* self) {
 
 namespace stc::motion {
 
-void registerSm3ConfigNatives() {
+void registerSm3ConfigNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(MC_ReadParameter, MC_ReadParameter)
   STC_SM3_NATIVE(MC_ReadBoolParameter, MC_ReadBoolParameter)
   STC_SM3_NATIVE(MC_WriteParameter, MC_WriteParameter)

@@ -351,7 +351,7 @@ void MC_DigitalCamSwitch(sm3::MC_DigitalCamSwitch* self) {
 
 namespace stc::motion::sm3face {
 
-void registerSm3DiagNatives() {
+void registerSm3DiagNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(SMC_CheckLimits, SMC_CheckLimits)
   STC_SM3_NATIVE(SMC_InPosition, SMC_InPosition)
   STC_SM3_NATIVE(SMC_GetMaxSetVelocity, SMC_GetMaxSetVelocity)

@@ -14,15 +14,15 @@
 
 namespace stc::motion {
 // Per-family registration, called by registerSm3Natives().
-void registerLeadshineNatives();
-void registerSm3ConfigNatives();   // Sm3Config.cpp: parameter access and axis configuration
+void registerLeadshineNatives(MotionLibrary& lib);
+void registerSm3ConfigNatives(MotionLibrary& lib);   // Sm3Config.cpp: parameter access and axis configuration
 }  // namespace stc::motion
 
 namespace stc::motion::sm3face {
 
 namespace sm3 = stc::native::sm3;
 
-void registerSm3HomingNatives();   // Sm3Homing.cpp (also the Leadshine homing blocks)
+void registerSm3HomingNatives(MotionLibrary& lib);   // Sm3Homing.cpp (also the Leadshine homing blocks)
 
 // The axis behind an AXIS_REF_SM3 in-out, bound on first use (a virtual axis
 // configured from the variable's initial values when project.toml has none);
@@ -139,7 +139,7 @@ void axisFb(T* self, F call) {
 }
 
 // Per-family registration (called at the start of registerSm3Natives()).
-void registerSm3DiagNatives();
+void registerSm3DiagNatives(MotionLibrary& lib);
 
 // Like axisFb, for bodies that take the FB's kernel slot: call(kernel, slot, axis, ctx).
 template <class T, class F>
@@ -150,11 +150,11 @@ void axisFbSlot(T* self, FbKind kind, F call) {
 // Registers `fn` as the native body of the ST FB `name` (checked against the generated signature).
 #define STC_SM3_NATIVE(name, ...)                                                        \
   static_assert(std::is_same_v<decltype(__VA_ARGS__), ::stc::native::sm3::name##_fn>);   \
-  ::stc::vm::nativeRegistry().add({::stc::native::sm3::name##_name, reinterpret_cast<const void*>(&__VA_ARGS__), ::stc::native::sm3::name##_hash});
+  lib.add({::stc::native::sm3::name##_name, reinterpret_cast<const void*>(&__VA_ARGS__), ::stc::native::sm3::name##_hash});
 
 }  // namespace stc::motion::sm3face
 
 namespace stc::motion {
 // Per-family registration, called at the start of registerSm3Natives().
-void registerSm3ProfilesNatives();
+void registerSm3ProfilesNatives(MotionLibrary& lib);
 }  // namespace stc::motion

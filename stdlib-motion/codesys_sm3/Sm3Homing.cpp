@@ -51,15 +51,15 @@ void SMC_Homing(sm3::SMC_Homing* self) {
 }  // namespace
 
 namespace stc::motion {
-void registerLsHomingNatives();   // leadshine/LsHoming.cpp
+void registerLsHomingNatives(MotionLibrary& lib);   // leadshine/LsHoming.cpp
 }
 
 namespace stc::motion::sm3face {
 
-void registerSm3HomingNatives() {
+void registerSm3HomingNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(MC_Home, MC_Home)
   STC_SM3_NATIVE(SMC_Homing, SMC_Homing)
-  registerLsHomingNatives();
+  registerLsHomingNatives(lib);
 }
 
 }  // namespace stc::motion::sm3face

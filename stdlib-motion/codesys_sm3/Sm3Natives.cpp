@@ -13,12 +13,6 @@ using namespace stc::motion::sm3face;
 
 namespace {
 
-// AXIS_REF_SM3 variables by axis index (for the mirror after each cycle).
-std::vector<sm3::AXIS_REF_SM3*>& axisRefs() {
-  static std::vector<sm3::AXIS_REF_SM3*> refs;
-  return refs;
-}
-
 void mirror(const Axis& ax, sm3::AXIS_REF_SM3& r) {
   r.nAxisState = static_cast<int16_t>(ax.state());
   r.bCommunication = ax.drive().communication();
@@ -82,21 +76,21 @@ AxisConfig configFromRef(const sm3::AXIS_REF_SM3& r) {
 
 namespace stc::motion::sm3face {
 
-void mirrorAll(Axis& ax) {
-  auto& refs = axisRefs();
-  if (ax.index() < refs.size() && refs[ax.index()]) mirror(ax, *refs[ax.index()]);
-}
+void mirrorVar(const Axis& ax, void* var) { mirror(ax, *static_cast<sm3::AXIS_REF_SM3*>(var)); }
+void boundVar(void* var, const Axis& ax) { static_cast<sm3::AXIS_REF_SM3*>(var)->__stcAxis = ax.index() + 1; }
+
+void mirrorAll(Axis& ax) { MotionSession::current().mirror(ax); }
 
 Axis* bind(sm3::AXIS_REF_SM3* ref, const CallCtx& c) {
   if (!ref) return nullptr;
-  Kernel& k = kernel();
-  auto& refs = axisRefs();
+  MotionSession& s = MotionSession::current();
+  Kernel& k = s.kernel;
   Axis* ax = ref->__stcAxis ? k.axis(ref->__stcAxis - 1) : nullptr;
-  if (!ax || ax->index() >= refs.size() || refs[ax->index()] != ref) {
+  // The binding is only trusted when the axis is bound to this very variable.
+  if (!ax || ax->index() >= s.axisVars.size() || s.axisVars[ax->index()].var != ref) {
     ax = &k.addAxis(configFromRef(*ref));
-    refs.resize(k.axisCount(), nullptr);
-    refs[ax->index()] = ref;
-    ref->__stcAxis = ax->index() + 1;
+    s.bindVar(*ax, ref, &mirrorVar);
+    boundVar(ref, *ax);
   }
   if (!k.claim(*ax, c)) return nullptr;
   return ax;
@@ -186,12 +180,12 @@ void MC_ReadAxisError(sm3::MC_ReadAxisError* self) {
 
 namespace stc::motion {
 
-void registerSm3Natives() {
-  registerLeadshineNatives();
-  registerSm3ConfigNatives();
-  registerSm3DiagNatives();
-  registerSm3ProfilesNatives();
-  registerSm3HomingNatives();
+void registerSm3Natives(MotionLibrary& lib) {
+  registerLeadshineNatives(lib);
+  registerSm3ConfigNatives(lib);
+  registerSm3DiagNatives(lib);
+  registerSm3ProfilesNatives(lib);
+  registerSm3HomingNatives(lib);
   STC_SM3_NATIVE(MC_Power, MC_Power)
   STC_SM3_NATIVE(MC_Reset, MC_Reset)
   STC_SM3_NATIVE(MC_MoveAbsolute, moveBody<sm3::MC_MoveAbsolute, FbKind::MoveAbsolute>)
@@ -212,15 +206,7 @@ void registerSm3Natives() {
   STC_SM3_NATIVE(SMC_ReadSetPosition, SMC_ReadSetPosition)
   STC_SM3_NATIVE(MC_ReadStatus, MC_ReadStatus)
   STC_SM3_NATIVE(MC_ReadAxisError, MC_ReadAxisError)
-  addAxisMirror([](Axis& ax) { mirrorAll(ax); });
-  addAxisBinder("AXIS_REF_SM3", [](void* ref, Axis& ax) {
-    auto& refs = axisRefs();
-    refs.resize(kernel().axisCount(), nullptr);
-    refs[ax.index()] = static_cast<sm3::AXIS_REF_SM3*>(ref);
-    refs[ax.index()]->__stcAxis = ax.index() + 1;
-    mirror(ax, *refs[ax.index()]);
-  });
-  addResetHook([] { axisRefs().clear(); });
+  lib.addAxisFace({"AXIS_REF_SM3", &mirrorVar, &boundVar});
 }
 
 }  // namespace stc::motion

@@ -94,7 +94,7 @@ void SMC_SetControllerMode(sm3::SMC_SetControllerMode* self) {
 
 namespace stc::motion {
 
-void registerSm3ProfilesNatives() {
+void registerSm3ProfilesNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(MC_PositionProfile, MC_PositionProfile)
   STC_SM3_NATIVE(MC_VelocityProfile, MC_VelocityProfile)
   STC_SM3_NATIVE(MC_AccelerationProfile, MC_AccelerationProfile)

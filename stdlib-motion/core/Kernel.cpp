@@ -19,11 +19,6 @@ bool VendorProfile::named(std::string_view name, VendorProfile& out) {
   return false;
 }
 
-Kernel& kernel() {
-  static Kernel k;
-  return k;
-}
-
 void Kernel::reset() {
   axes_.clear();
   slots_.clear();
@@ -682,7 +677,6 @@ void Kernel::stepAxis(Axis& ax, int64_t nowNs, double dt, uint64_t cycle) {
     }
     ax.pendingClear.resize(keep);
   }
-  if (axisStepped) axisStepped(ax);
 }
 
 void FbBehaviour::reached(Kernel& k, FbSlot&, Axis& ax, int64_t nowNs, uint64_t cycle, double overshoot) {

@@ -2,7 +2,7 @@
 // instruction semantics (what a call of each FB does) and the per-cycle step
 // that runs after the programs of the task owning the axes.
 //
-// One kernel per controller (`kernel()`), reset at each load.  The vendor
+// One kernel per controller (held by its MotionSession, stdlib-motion/MotionNatives.h).  The vendor
 // faces (stdlib-motion/<set>/) are thin: they copy the ST inputs into the
 // calls below and the FbOutputs back into the ST instance.
 #pragma once
@@ -62,8 +62,6 @@ public:
 
   // ---- the cycle: steps every axis owned by `task`.
   void cycle(uint32_t task, int64_t nowNs, int64_t intervalNs, uint64_t cycle);
-  // Called after an axis has been stepped (the face mirrors it into AXIS_REF).
-  void (*axisStepped)(Axis& ax) = nullptr;
 
   VendorProfile profile;
   uint64_t callCounter = 0;
@@ -102,7 +100,5 @@ private:
   std::vector<uint8_t> stepped_;   // cycle(): axes already stepped
   std::vector<Axis*> chain_;       // cycle(): an axis and its not yet stepped masters
 };
-
-Kernel& kernel();
 
 }  // namespace stc::motion

@@ -22,11 +22,8 @@ static_assert(std::is_same_v<decltype(taskTime), iec::__STC_TASK_TIME_fn>);
 
 namespace stc::stdlib {
 
-void registerStandardNatives() {
-  static bool done = false;
-  if (done) return;
-  done = true;
-  vm::nativeRegistry().add({iec::__STC_TASK_TIME_name, reinterpret_cast<const void*>(&taskTime), iec::__STC_TASK_TIME_hash});
+StandardLibrary::StandardLibrary() {
+  natives_.push_back({iec::__STC_TASK_TIME_name, reinterpret_cast<const void*>(&taskTime), iec::__STC_TASK_TIME_hash});
 }
 
 }  // namespace stc::stdlib

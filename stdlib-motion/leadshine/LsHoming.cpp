@@ -51,7 +51,7 @@ void LS_EtherCATAxis_HomeMove(sm3::LS_EtherCATAxis_HomeMove* self) {
 
 namespace stc::motion {
 
-void registerLsHomingNatives() {
+void registerLsHomingNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(SMC_Home, SMC_Home)
   STC_SM3_NATIVE(LS_EtherCATAxis_HomeMove, LS_EtherCATAxis_HomeMove)
 }

@@ -108,7 +108,7 @@ void LS_Encoder_SetAxisMove(sm3::LS_Encoder_SetAxisMove* self) {
 
 namespace stc::motion {
 
-void registerLeadshineNatives() {
+void registerLeadshineNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(LS_ResetVirtualAxis, LS_ResetVirtualAxis)
   STC_SM3_NATIVE(LS_MoveAbs, startVelMove<sm3::LS_MoveAbs, FbKind::MoveAbsolute>)
   STC_SM3_NATIVE(LS_MoveRel, startVelMove<sm3::LS_MoveRel, FbKind::MoveRelative>)

@@ -1,9 +1,8 @@
 // `stc test` (docs/projects.md, "Scenarios and golden traces").
 //
 // The parent process validates the project directories and starts one child
-// (`/proc/self/exe test --one DIR`) per project, at most -j at a time: the
-// motion kernel is a process-wide singleton, so two projects never share a
-// process.  A child writes its report to a temporary file; the parent prints
+// (`/proc/self/exe test --one DIR`) per project, at most -j at a time, so
+// projects run in parallel and a crash stays in its project.  A child writes its report to a temporary file; the parent prints
 // the reports whole, in argument order, and counts their PASS/FAIL lines.
 // Inside a project the sources are parsed and checked once; each scenario
 // gets fresh generated code, a fresh controller and a fresh motion kernel.
@@ -32,7 +31,7 @@
 #include "sema/Layout.h"
 #include "sema/Model.h"
 #include "sema/Types.h"
-#include "stdlib-motion/MotionNatives.h"
+#include "tools/stc/Libraries.h"
 #include "vm/Controller.h"
 #include "vm/Image.h"
 #include "vm/Time.h"
@@ -424,20 +423,13 @@ private:
 // Runs one scenario; appends the failure lines to `report`.
 bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::string& report) {
   // The axes, with the scenario's faults added.
-  std::vector<motion::AxisConfig> axes;
+  tool::RunLibraries libs;
   std::string err;
-  std::vector<motion::IoDevice> ios;
-  if (!motion::loadProjectAxes(pr.dir, axes, err) || !motion::loadProjectIo(pr.dir, ios, err)) {
+  if (!libs.motion.readProject(pr.dir, {}, err)) {
     report += "  " + err + "\n";
     return false;
   }
-  motion::setProjectIo(std::move(ios));
-  motion::VendorProfile vendor;
-  if (!motion::loadProjectVendorProfile(pr.dir, {}, vendor, err)) {
-    report += "  " + err + "\n";
-    return false;
-  }
-  motion::setVendorProfile(vendor);
+  std::vector<motion::AxisConfig>& axes = libs.motion.config().axes;
   for (const FaultStep& f : sc.faults) {
     auto ax = std::find_if(axes.begin(), axes.end(), [&](const motion::AxisConfig& a) { return equalsIgnoreCase(a.name, f.axis); });
     if (ax == axes.end()) {
@@ -451,7 +443,6 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
     std::stable_sort(ax->drive.faults.begin(), ax->drive.faults.end(),
                      [](const motion::FaultEvent& a, const motion::FaultEvent& b) { return a.atNs < b.atNs; });
   }
-  motion::setProjectAxes(std::move(axes));
 
   codegen::CodegenOptions o;
   o.optLevel = 1;   // as stc run
@@ -470,6 +461,7 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
     return false;
   }
   vm::Controller ctl(*comp.model(), comp.diags());
+  libs.attachTo(ctl);
   if (!ctl.load(std::move(m), err)) {
     report += "  error: " + err + "\n";
     return false;
@@ -699,7 +691,6 @@ void runProject(ProjectRun& pr) {
   std::string compileErrors;
   {
     bool inputsOk = comp.addPath(pr.dir);
-    vm::registerTestLib();
     CompileOptions co;
     bool ok = false;
     if (inputsOk) runWithLargeStack([&] { ok = comp.check(co); });

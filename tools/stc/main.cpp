@@ -16,7 +16,7 @@
 #include "vm/Controller.h"
 #include "vm/Time.h"
 #include "vm/testlib/TestLib.h"
-#include "stdlib-motion/MotionNatives.h"
+#include "tools/stc/Libraries.h"
 #include "tools/stc/TestCommand.h"
 #include "tools/stc/Plot.h"
 
@@ -155,8 +155,7 @@ std::unique_ptr<codegen::CompiledModule> compile(Compilation& c, const BuildArgs
   CompileOptions co = compileOptions(a);
   // The test natives are always registered (a declaration that does not
   // match them is a load error); their ST declarations only with --testlib.
-  const char* testlib = vm::registerTestLib();
-  if (a.testlib) co.libraries.push_back({"<testlib>", testlib});
+  if (a.testlib) co.libraries.push_back({"<testlib>", vm::TestLibrary::source()});
   if (inputsOk) runWithLargeStack([&] { ok = c.check(co); });
   status = 1;
   if (!ok || !inputsOk || !c.model()) {
@@ -287,33 +286,20 @@ int runRun(const BuildArgs& a) {
     std::cerr << "stc: error: --trace needs --trace-out FILE.csv|FILE.vcd (or --plot FILE.svg)\n";
     return 2;
   }
-  // The axes that project directories configure ([[axis]] in project.toml).
-  std::vector<motion::AxisConfig> axes;
-  std::vector<motion::IoDevice> ios;
+  // The axes, devices and vendor profile that project directories configure (project.toml).
+  tool::RunLibraries libs;
+  libs.motion.config().profile = motion::defaultVendorProfile(a.libs);
   for (const std::string& p : a.paths) {
     std::error_code ec;
     if (!std::filesystem::is_directory(p, ec)) continue;
     std::string err;
-    if (!motion::loadProjectAxes(p, axes, err) || !motion::loadProjectIo(p, ios, err)) {
+    if (!libs.motion.readProject(p, a.libs, err)) {
       std::cerr << "stc: error: " << err << "\n";
       return 1;
     }
   }
-  motion::setProjectAxes(std::move(axes));
-  motion::setProjectIo(std::move(ios));
-  // The vendor profile: the project's, else by the libraries used.
-  motion::VendorProfile vendor = motion::defaultVendorProfile(a.libs);
-  for (const std::string& p : a.paths) {
-    std::error_code ec;
-    if (!std::filesystem::is_directory(p, ec)) continue;
-    std::string err;
-    if (!motion::loadProjectVendorProfile(p, a.libs, vendor, err)) {
-      std::cerr << "stc: error: " << err << "\n";
-      return 1;
-    }
-  }
-  motion::setVendorProfile(vendor);
   vm::Controller ctl(*c.model(), c.diags());
+  libs.attachTo(ctl);
   std::string err;
   size_t before = c.diags().diagnostics().size();
   if (!ctl.load(std::move(m), err)) {

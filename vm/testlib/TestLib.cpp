@@ -26,8 +26,16 @@ bool TEST_WaitFlag(void* flag) {
 
 int64_t TEST_Now() { return stc::vm::now(); }
 
-uint32_t gTicks = 0;
-uint32_t TEST_Ticks() { return gTicks; }
+// Counts the cycle hook's calls of this controller (per session).
+struct TestSession : stc::vm::NativeSession {
+  uint32_t ticks = 0;
+  void cycle(const HookCtx&) override { ++ticks; }
+};
+const char kSessionKey = 0;
+uint32_t TEST_Ticks() {
+  auto* s = static_cast<TestSession*>(stc::vm::currentSession(&kSessionKey));
+  return s ? s->ticks : 0;
+}
 
 void TEST_Counter(tl::TEST_Counter* self) {
   ++self->calls;
@@ -46,19 +54,18 @@ static_assert(std::is_same_v<decltype(TEST_Ticks), tl::TEST_Ticks_fn>);
 
 namespace stc::vm {
 
-const char* registerTestLib() {
-  static bool done = false;
-  if (!done) {
-    NativeRegistry& r = nativeRegistry();
-    r.add({tl::TEST_Sleep_name, reinterpret_cast<const void*>(&TEST_Sleep), tl::TEST_Sleep_hash});
-    r.add({tl::TEST_WaitFlag_name, reinterpret_cast<const void*>(&TEST_WaitFlag), tl::TEST_WaitFlag_hash});
-    r.add({tl::TEST_Now_name, reinterpret_cast<const void*>(&TEST_Now), tl::TEST_Now_hash});
-    r.add({tl::TEST_Counter_name, reinterpret_cast<const void*>(&TEST_Counter), tl::TEST_Counter_hash});
-    r.add({tl::TEST_Ticks_name, reinterpret_cast<const void*>(&TEST_Ticks), tl::TEST_Ticks_hash});
-    r.addCycleHook({"TEST_Tick", [](const HookCtx&) { ++gTicks; }});
-    done = true;
-  }
-  return kTestlibSource;
+TestLibrary::TestLibrary() {
+  natives_ = {
+      {tl::TEST_Sleep_name, reinterpret_cast<const void*>(&TEST_Sleep), tl::TEST_Sleep_hash},
+      {tl::TEST_WaitFlag_name, reinterpret_cast<const void*>(&TEST_WaitFlag), tl::TEST_WaitFlag_hash},
+      {tl::TEST_Now_name, reinterpret_cast<const void*>(&TEST_Now), tl::TEST_Now_hash},
+      {tl::TEST_Counter_name, reinterpret_cast<const void*>(&TEST_Counter), tl::TEST_Counter_hash},
+      {tl::TEST_Ticks_name, reinterpret_cast<const void*>(&TEST_Ticks), tl::TEST_Ticks_hash},
+  };
 }
+
+const char* TestLibrary::source() { return kTestlibSource; }
+const void* TestLibrary::sessionKey() const { return &kSessionKey; }
+std::unique_ptr<NativeSession> TestLibrary::newSession() const { return std::make_unique<TestSession>(); }
 
 }  // namespace stc::vm

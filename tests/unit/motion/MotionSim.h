@@ -11,7 +11,7 @@
 namespace stc::motion::test {
 
 struct Sim {
-  Kernel& k = kernel();
+  Kernel k;
   uint64_t cycle = 1;            // the scheduler's cycles are 1-based, cycle n at (n-1) ms
   int64_t now = 0;
   static constexpr int64_t kDt = 1'000'000;
