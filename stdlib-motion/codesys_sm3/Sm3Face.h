@@ -96,11 +96,19 @@ inline MoveInputs moveInputs(const T* s) {
   return in;
 }
 
+// An FB re-wired to another axis while Busy reports 32 (Kernel::axisChanged).
+template <class T>
+inline bool rewired(T* self, Axis& ax, const CallCtx& c) {
+  if (!kernel().axisChanged(self->__handle, self, ax, c)) return false;
+  kernel().slot(self->__handle, self, FbKind::Other, &publish<T>).sync();
+  return true;
+}
+
 template <class T, FbKind K>
 inline void moveBody(T* self) {
   CallCtx c = callContext();
   Axis* ax = bind(static_cast<sm3::AXIS_REF_SM3*>(self->Axis), c);
-  if (refuse(self, ax)) return;
+  if (refuse(self, ax) || rewired(self, *ax, c)) return;
   kernel().callMove(slotOf(self, K), *ax, self->Execute, moveInputs(self), c);
   mirrorAll(*ax);
 }
@@ -134,6 +142,8 @@ void axisFb(T* self, F call) {
   CallCtx c = callContext();
   Axis* ax = bind(self->Axis, c);
   if (refuse(self, ax)) return;
+  if constexpr (requires { self->__handle; })
+    if (rewired(self, *ax, c)) return;
   call(kernel(), *ax, c);
   mirrorAll(*ax);
 }

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+
+#include "stdlib-motion/core/InputBounds.h"
 #include <limits>
 
 namespace stc::motion {
@@ -346,7 +348,7 @@ uint16_t DriveHoming::statusBits(const Drive& d) const {
 
 namespace {
 
-bool finitePositive(double x) { return std::isfinite(x) && x > 0; }
+bool finitePositive(double x) { return bounds::rate(x); }   // velocities and rates: finite, > 0, not absurd
 
 // ---------------------------------------------------------------- MC_Home, LS_EtherCATAxis_HomeMove
 

@@ -4,6 +4,8 @@
 // tests/unit/motion/ and tests/run/motion_*.st.
 #include "stdlib-motion/core/Kernel.h"
 
+#include "stdlib-motion/core/InputBounds.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -48,11 +50,32 @@ FbSlot& Kernel::slot(uint64_t& handle, void* instance, FbKind kind, PublishFn pu
   return s;
 }
 
+bool Kernel::axisChanged(uint64_t handle, const void* instance, Axis& ax, const CallCtx& c) {
+  if (handle < 1 || handle > slots_.size()) return false;
+  FbSlot& fb = *slots_[handle - 1];
+  if (fb.instance != instance || !fb.axis || fb.axis == &ax) return false;
+  Axis& old = *fb.axis;
+  if (!fb.out.busy) {
+    fb.axis = &ax;   // idle: the next command runs on the new axis
+    return false;
+  }
+  const bool commands = old.controller == &fb || old.superimposer == &fb ||
+                        std::find(old.queue.begin(), old.queue.end(), &fb) != old.queue.end();
+  if (commands) {
+    errorStop(old, Error::AxisRefChanged, c.nowNs, c.cycle);   // ends fb's command with error 32
+    if (fb.out.busy) finish(fb, &c, c.cycle, false, false, Error::AxisRefChanged);
+  } else {
+    if (old.power == &fb) old.power = nullptr;
+    finish(fb, &c, c.cycle, false, false, Error::AxisRefChanged);
+  }
+  return true;
+}
+
 // ---------------------------------------------------------------- output rules
 
 namespace {
 
-bool finitePositive(double x) { return std::isfinite(x) && x > 0; }
+bool finitePositive(double x) { return bounds::rate(x); }   // accelerations, decelerations (and the Jog/Inch velocity)
 
 bool isPositionMove(FbKind k) {
   return k == FbKind::MoveAbsolute || k == FbKind::MoveRelative || k == FbKind::MoveAdditive ||
@@ -84,10 +107,10 @@ bool validDirection(Direction d) { int v = static_cast<int>(d); return v >= -1 &
 // Bad inputs of a move, in the order the checks are made.
 Error validateMove(FbKind k, const MoveInputs& in, const Axis& ax) {
   const MoveCodes codes = codesOf(k);
-  const bool jerkOk = std::isfinite(in.jerk) && in.jerk >= 0 && (ax.config().ramp == RampType::Trapez || ax.config().ramp == RampType::SinSquare || in.jerk > 0);
-  const bool velOk = k == FbKind::MoveVelocity ? std::isfinite(in.velocity) : finitePositive(in.velocity);
+  const bool jerkOk = bounds::jerk(in.jerk) && (ax.config().ramp == RampType::Trapez || ax.config().ramp == RampType::SinSquare || in.jerk > 0);
+  const bool velOk = k == FbKind::MoveVelocity ? bounds::signedVelocity(in.velocity) : bounds::velocity(in.velocity);
   if (!velOk || !finitePositive(in.acceleration) || !finitePositive(in.deceleration) || !jerkOk) return codes.velAcc;
-  if (!std::isfinite(in.position) || !std::isfinite(in.distance)) return codes.velAcc;
+  if (!bounds::position(in.position) || !bounds::position(in.distance)) return codes.velAcc;
   switch (k) {
     case FbKind::MoveAbsolute:
       if (!validDirection(in.direction)) return codes.direction;
@@ -98,7 +121,7 @@ Error validateMove(FbKind k, const MoveInputs& in, const Axis& ax) {
       break;
     case FbKind::MoveContinuousAbsolute:
     case FbKind::MoveContinuousRelative:
-      if (!std::isfinite(in.endVelocity) || in.endVelocity < 0) return codes.velAcc;
+      if (!bounds::signedVelocity(in.endVelocity) || in.endVelocity < 0) return codes.velAcc;
       if (!validDirection(in.direction) || !validDirection(in.endDirection)) return codes.direction;
       if (in.endDirection == Direction::Shortest || in.endDirection == Direction::Fastest) return codes.directionNotApplicable;
       if (k == FbKind::MoveContinuousAbsolute && in.direction == Direction::Fastest) return codes.directionNotApplicable;
@@ -466,7 +489,7 @@ void Kernel::callHalt(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, 
     return;
   }
   fb.axis = &ax;
-  if (!finitePositive(in.deceleration) || !std::isfinite(in.jerk) || in.jerk < 0) return fail(fb, Error::StopInvalidAccDec, c);
+  if (!finitePositive(in.deceleration) || !bounds::jerk(in.jerk)) return fail(fb, Error::StopInvalidAccDec, c);
   if (Error e = motionStateError(ax); e != Error::None) return fail(fb, e, c);
   fb.in = in;
   fb.in.velocity = std::max(std::fabs(ax.set().v), 1e-9);
@@ -489,7 +512,7 @@ void Kernel::callStop(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, 
   fb.axis = &ax;
   if (ax.state() == AxisState::ErrorStop) return fail(fb, Error::StopAxisInErrorStop, c);
   if (ax.blockingStop && ax.blockingStop != &fb) return fail(fb, Error::BlockingStopWasntCalled, c);
-  if (!finitePositive(in.deceleration) || !std::isfinite(in.jerk) || in.jerk < 0) return fail(fb, Error::StopInvalidAccDec, c);
+  if (!finitePositive(in.deceleration) || !bounds::jerk(in.jerk)) return fail(fb, Error::StopInvalidAccDec, c);
   if (ax.state() == AxisState::PowerOff) return fail(fb, Error::RegulatorOrStartNotSet, c);
   if (ax.drive().modeOfOperation() == 10) return fail(fb, Error::WrongControllerMode, c);   // torque control
   fb.in = in;
@@ -521,8 +544,7 @@ void Kernel::callJog(FbSlot& fb, Axis& ax, bool forward, bool backward, const Mo
   if (want != 0 && fb.levelDir != want && !fb.out.error) {
     fb.out.aborted = false;
     MoveInputs i = in;
-    if (!finitePositive(in.velocity) || !finitePositive(in.acceleration) || !finitePositive(in.deceleration) ||
-        !std::isfinite(in.jerk) || in.jerk < 0) {
+    if (!bounds::velocity(in.velocity) || !finitePositive(in.acceleration) || !finitePositive(in.deceleration) || !bounds::jerk(in.jerk)) {
       fb.levelDir = want;
       return fail(fb, Error::MvInvalidAccDec, c);
     }
@@ -578,8 +600,8 @@ void Kernel::callInch(FbSlot& fb, Axis& ax, bool forward, bool backward, const M
     fb.levelDir = want;
     fb.out.done = fb.out.error = fb.out.aborted = false;
     fb.out.errorId = Error::None;
-    if (!finitePositive(in.velocity) || !finitePositive(in.acceleration) || !finitePositive(in.deceleration) ||
-        !std::isfinite(in.jerk) || in.jerk < 0 || !std::isfinite(in.distance))
+    if (!bounds::velocity(in.velocity) || !finitePositive(in.acceleration) || !finitePositive(in.deceleration) ||
+        !bounds::jerk(in.jerk) || !bounds::position(in.distance))
       return fail(fb, Error::MrInvalidVelAcc, c);
     if (Error e = motionStateError(ax); e != Error::None) return fail(fb, e, c);
     fb.in = in;
@@ -597,9 +619,11 @@ void Kernel::callSetPosition(FbSlot& fb, Axis& ax, bool execute, double position
     return;
   }
   fb.axis = &ax;
-  if (!std::isfinite(position)) return fail(fb, Error::NotReadyForMotion, c);
+  // Beyond the position bound (or a shift that would leave it) it is refused: never an Inf/NaN position.
+  if (!bounds::position(position)) return fail(fb, Error::NotReadyForMotion, c);
   ax.sample(c.nowNs);
   const double delta = relative ? position : position - ax.reportPosition(ax.set().p);
+  if (!bounds::position(ax.set().p + delta) || !bounds::position(ax.actPosition() + delta)) return fail(fb, Error::NotReadyForMotion, c);
   ax.shiftPosition(delta);
   finish(fb, &c, c.cycle, true, false, Error::None);
 }

@@ -50,6 +50,11 @@ public:
   // ---- FB slots: `handle` lives in the ST instance (0 = none yet).
   FbSlot& slot(uint64_t& handle, void* instance, FbKind kind, PublishFn publish);
 
+  // An FB (by its handle) called with another axis than the one its command runs on:
+  // while Busy it reports error 32 and its command ends (the first axis, left without
+  // its commanding FB, stops in ErrorStop 32); true then, and the call goes no further.
+  bool axisChanged(uint64_t handle, const void* instance, Axis& ax, const CallCtx& c);
+
   // ---- instruction semantics (called from the FB bodies)
   void callPower(FbSlot& fb, Axis& ax, bool enable, bool regulatorOn, bool driveStart, const CallCtx& c);
   void callReset(FbSlot& fb, Axis& ax, bool execute, const CallCtx& c);

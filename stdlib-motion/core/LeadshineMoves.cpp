@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stdlib-motion/core/InputBounds.h"
+
 namespace stc::motion::leadshine {
 
 namespace {
 
 bool finite(double x) { return std::isfinite(x); }
-bool finitePositive(double x) { return std::isfinite(x) && x > 0; }
+bool finitePositive(double x) { return bounds::rate(x); }   // velocities and rates: finite, > 0, not absurd
 bool finiteNonNegative(double x) { return std::isfinite(x) && x >= 0; }
 
 // The set speed of the axis along `sign` (0 when it moves the other way).
