@@ -31,13 +31,10 @@ MotionSession::MotionSession(const MotionLibrary& lib, const MotionConfig& cfg) 
   kernel.profile = cfg_.profile;
 }
 
-MotionSession& MotionSession::current() {
-  auto* s = static_cast<MotionSession*>(vm::currentSession(&kSessionKey));
-  if (!s) throw std::logic_error("a motion native was called outside a controller with the motion library");
-  return *s;
+const void* MotionSession::key() { return &kSessionKey; }
+void MotionSession::noSession() {
+  throw std::logic_error("a motion native was called outside a controller with the motion library");
 }
-
-Kernel& kernel() { return MotionSession::current().kernel; }
 
 void MotionSession::bindVar(const Axis& ax, void* var, void (*mirrorFn)(const Axis&, void*)) {
   if (axisVars.size() <= ax.index()) axisVars.resize(ax.index() + 1);

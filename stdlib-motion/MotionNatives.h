@@ -78,7 +78,11 @@ public:
   void cycle(const vm::HookCtx& c) override;
 
   // The session of the controller whose code is running (natives only).
-  static MotionSession& current();
+  static MotionSession& current() {
+    if (auto* s = static_cast<MotionSession*>(vm::currentSession(key()))) return *s;
+    noSession();
+  }
+  static const void* key();
 
   Kernel kernel;
   // The axis variable each kernel axis is bound to, by axis index.
@@ -93,13 +97,14 @@ public:
   }
 
 private:
+  [[noreturn]] static void noSession();
   const MotionLibrary& lib_;
   MotionConfig cfg_;
   std::shared_ptr<IoRuntime> io_;
 };
 
-// The kernel of the calling controller (MotionSession::current().kernel).
-Kernel& kernel();
+// The kernel of the calling controller.
+inline Kernel& kernel() { return MotionSession::current().kernel; }
 
 // The axes of the project ([[axis]] tables of `dir`/project.toml).  False with
 // `error` (file:line:col: message) on a bad table; no file or no table is fine.

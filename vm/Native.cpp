@@ -4,19 +4,12 @@
 
 namespace stc::vm {
 
-namespace {
-thread_local const SessionScope::Table* tSessions = nullptr;
-}  // namespace
+namespace detail {
+thread_local const SessionTable* tSessions = nullptr;
+}  // namespace detail
 
-NativeSession* currentSession(const void* key) {
-  if (tSessions)
-    for (const auto& [k, s] : *tSessions)
-      if (k == key) return s;
-  return nullptr;
-}
-
-SessionScope::SessionScope(const Table* t) : prev_(tSessions) { tSessions = t; }
-SessionScope::~SessionScope() { tSessions = prev_; }
+SessionScope::SessionScope(const Table* t) : prev_(detail::tSessions) { detail::tSessions = t; }
+SessionScope::~SessionScope() { detail::tSessions = prev_; }
 
 void sleepFor(Time d) { Scheduler::current()->sleepFor(d); }
 void waitUntil(std::function<bool()> ready) { Scheduler::current()->waitUntil(std::move(ready)); }

@@ -74,14 +74,25 @@ public:
   virtual std::unique_ptr<NativeSession> newSession() const { return nullptr; }
 };
 
+namespace detail {
+using SessionTable = std::vector<std::pair<const void*, NativeSession*>>;
+extern thread_local const SessionTable* tSessions;   // set by SessionScope
+}  // namespace detail
+
 // The session that the controller running on this thread keeps under `key`
-// (null outside a controller's load or run, or when it has none).
-NativeSession* currentSession(const void* key);
+// (null outside a controller's load or run, or when it has none).  Inline:
+// natives call it on every call.
+inline NativeSession* currentSession(const void* key) {
+  if (const detail::SessionTable* t = detail::tSessions)
+    for (const auto& [k, s] : *t)
+      if (k == key) return s;
+  return nullptr;
+}
 
 // Makes a controller's sessions current on this thread for the guard's life.
 class SessionScope {
 public:
-  using Table = std::vector<std::pair<const void*, NativeSession*>>;
+  using Table = detail::SessionTable;
   explicit SessionScope(const Table* t);
   ~SessionScope();
   SessionScope(const SessionScope&) = delete;

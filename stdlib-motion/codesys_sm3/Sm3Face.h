@@ -28,8 +28,11 @@ void registerSm3HomingNatives(MotionLibrary& lib);   // Sm3Homing.cpp (also the 
 // configured from the variable's initial values when project.toml has none);
 // null when the calling task does not own it (every FB of an axis runs in one task).
 Axis* bind(sm3::AXIS_REF_SM3* ref, const CallCtx& c);
-// Copies the axis into its AXIS_REF_SM3 variable (after every call and cycle).
+// Copies the axis into its AXIS_REF_SM3 variable: everything (mirrorAll; the
+// session does it once per cycle after the kernel step), or after an FB call
+// only what a call can change (mirrorCall: no drive process data).
 void mirrorAll(Axis& ax);
+void mirrorCall(Axis& ax);
 
 // Copies FbOutputs into an ST instance, under whichever of the vendors'
 // output names the FB has (Done / bDone, ErrorID / ErrorId / nErrorID / iErrorID ...).
@@ -109,8 +112,10 @@ inline void moveBody(T* self) {
   CallCtx c = callContext();
   Axis* ax = bind(static_cast<sm3::AXIS_REF_SM3*>(self->Axis), c);
   if (refuse(self, ax) || rewired(self, *ax, c)) return;
-  kernel().callMove(slotOf(self, K), *ax, self->Execute, moveInputs(self), c);
-  mirrorAll(*ax);
+  FbSlot& fb = slotOf(self, K);
+  const bool edge = fb.execute != static_cast<bool>(self->Execute);
+  kernel().callMove(fb, *ax, self->Execute, moveInputs(self), c);
+  if (edge) mirrorCall(*ax);   // without an edge of Execute the call changes nothing on the axis
 }
 
 
@@ -145,7 +150,7 @@ void axisFb(T* self, F call) {
   if constexpr (requires { self->__handle; })
     if (rewired(self, *ax, c)) return;
   call(kernel(), *ax, c);
-  mirrorAll(*ax);
+  mirrorCall(*ax);
 }
 
 // Per-family registration (called at the start of registerSm3Natives()).

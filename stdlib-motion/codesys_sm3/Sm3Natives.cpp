@@ -4,6 +4,7 @@
 // axis variable mirrors the kernel's axis after every call and cycle.
 // Other instruction families live in Sm3<Family>.cpp next to this file.
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "stdlib-motion/codesys_sm3/Sm3Face.h"
@@ -13,7 +14,18 @@ using namespace stc::motion::sm3face;
 
 namespace {
 
-void mirror(const Axis& ax, sm3::AXIS_REF_SM3& r) {
+// Saturating conversions without libm calls (the mirror runs for every axis in every cycle).
+int32_t clampDint(double v) {
+  if (!(v == v)) return 0;
+  return v <= -2147483648.0 ? INT32_MIN : v >= 2147483647.0 ? INT32_MAX : static_cast<int32_t>(std::lrint(v));
+}
+int16_t clampInt(double v) {
+  if (!(v == v)) return 0;
+  return v <= -32768.0 ? INT16_MIN : v >= 32767.0 ? INT16_MAX : static_cast<int16_t>(std::lrint(v));
+}
+
+// What an FB call can change: state, errors, power, set/actual values, the limits.
+void mirrorState(const Axis& ax, sm3::AXIS_REF_SM3& r) {
   r.nAxisState = static_cast<int16_t>(ax.state());
   r.bCommunication = ax.drive().communication();
   r.wCommunicationState = ax.drive().communication() ? 100 : 0;
@@ -38,23 +50,26 @@ void mirror(const Axis& ax, sm3::AXIS_REF_SM3& r) {
   r.fActPosition = ax.reportPosition(ax.actPosition());
   r.fActVelocity = ax.actVelocity();
   r.fActTorque = ax.actTorque();
-  const double inc = c.drive.incrementsPerUnit;
-  auto clampDint = [](double v) { return static_cast<int32_t>(std::fmax(-2147483648.0, std::fmin(2147483647.0, std::nearbyint(v)))); };
+  r.out.wControlWord = ax.drive().controlword();
+  r.out.byModesOfOperation = ax.drive().modeOfOperation();   // 6 during drive-side homing
+}
+
+// Everything, with the drive's process data (once per cycle, after the kernel step).
+void mirror(const Axis& ax, sm3::AXIS_REF_SM3& r) {
+  mirrorState(ax, r);
+  const double inc = ax.config().drive.incrementsPerUnit;
   r.in.wStatusWord = ax.drive().statusword();
   r.in.diActPosition = clampDint(ax.actPosition() * inc);
   r.in.diActVelocity = clampDint(ax.actVelocity() * inc);
-  r.in.wActTorque = static_cast<int16_t>(std::fmax(-32768, std::fmin(32767, std::nearbyint(ax.actTorque() * 10))));
+  r.in.wActTorque = clampInt(ax.actTorque() * 10);
   r.in.wErrorCode = ax.drive().errorCode();
   int64_t din = 0;
   ax.drive().readObject(0x60FD, 0, din);
   r.in.dwDigitalInputs = static_cast<uint32_t>(din);
-  r.out.wControlWord = ax.drive().controlword();
-  r.out.byModesOfOperation = ax.drive().modeOfOperation();   // 6 during drive-side homing
-  r.out.wSetTorque = static_cast<int16_t>(std::fmax(-32768, std::fmin(32767, std::nearbyint(ax.drive().targetTorque() * 10))));
+  r.out.wSetTorque = clampInt(ax.drive().targetTorque() * 10);
   r.out.diSetPosition = clampDint(ax.set().p * inc);
   r.out.diSetVelocity = clampDint(ax.set().v * inc);
 }
-
 
 // An AXIS_REF_SM3 the project does not configure becomes a virtual axis
 // configured from the values its initialiser gave.
@@ -81,6 +96,12 @@ void boundVar(void* var, const Axis& ax) { static_cast<sm3::AXIS_REF_SM3*>(var)-
 
 void mirrorAll(Axis& ax) { MotionSession::current().mirror(ax); }
 
+void mirrorCall(Axis& ax) {
+  MotionSession& s = MotionSession::current();
+  if (ax.index() < s.axisVars.size() && s.axisVars[ax.index()].var)
+    mirrorState(ax, *static_cast<sm3::AXIS_REF_SM3*>(s.axisVars[ax.index()].var));
+}
+
 Axis* bind(sm3::AXIS_REF_SM3* ref, const CallCtx& c) {
   if (!ref) return nullptr;
   MotionSession& s = MotionSession::current();
@@ -101,7 +122,16 @@ Axis* bind(sm3::AXIS_REF_SM3* ref, const CallCtx& c) {
 namespace {
 
 void MC_Power(sm3::MC_Power* self) {
-  axisFb(self, [&](Kernel& k, Axis& ax, const CallCtx& c) { k.callPower(slotOf(self, FbKind::Power), ax, self->Enable, self->bRegulatorOn, self->bDriveStart, c); });
+  CallCtx c = callContext();
+  Axis* ax = bind(self->Axis, c);
+  if (refuse(self, ax) || rewired(self, *ax, c)) return;
+  FbSlot& fb = slotOf(self, FbKind::Power);
+  // A call with the inputs of the previous one changes nothing the cycle's mirror does not show.
+  const bool changed = fb.execute != static_cast<bool>(self->Enable) || ax->power != &fb ||
+                       (self->Enable && (ax->powerRequested() != static_cast<bool>(self->bRegulatorOn) ||
+                                         ax->driveStart() != static_cast<bool>(self->bDriveStart)));
+  kernel().callPower(fb, *ax, self->Enable, self->bRegulatorOn, self->bDriveStart, c);
+  if (changed) mirrorCall(*ax);
 }
 
 void MC_Reset(sm3::MC_Reset* self) {

@@ -50,10 +50,7 @@ FbSlot& Kernel::slot(uint64_t& handle, void* instance, FbKind kind, PublishFn pu
   return s;
 }
 
-bool Kernel::axisChanged(uint64_t handle, const void* instance, Axis& ax, const CallCtx& c) {
-  if (handle < 1 || handle > slots_.size()) return false;
-  FbSlot& fb = *slots_[handle - 1];
-  if (fb.instance != instance || !fb.axis || fb.axis == &ax) return false;
+bool Kernel::axisChangedSlow(FbSlot& fb, Axis& ax, const CallCtx& c) {
   Axis& old = *fb.axis;
   if (!fb.out.busy) {
     fb.axis = &ax;   // idle: the next command runs on the new axis

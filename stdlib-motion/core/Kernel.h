@@ -53,7 +53,12 @@ public:
   // An FB (by its handle) called with another axis than the one its command runs on:
   // while Busy it reports error 32 and its command ends (the first axis, left without
   // its commanding FB, stops in ErrorStop 32); true then, and the call goes no further.
-  bool axisChanged(uint64_t handle, const void* instance, Axis& ax, const CallCtx& c);
+  bool axisChanged(uint64_t handle, const void* instance, Axis& ax, const CallCtx& c) {
+    if (handle - 1 >= slots_.size()) return false;   // no slot yet (handle 0 wraps)
+    FbSlot& fb = *slots_[handle - 1];
+    if (!fb.axis || fb.axis == &ax || fb.instance != instance) return false;
+    return axisChangedSlow(fb, ax, c);
+  }
 
   // ---- instruction semantics (called from the FB bodies)
   void callPower(FbSlot& fb, Axis& ax, bool enable, bool regulatorOn, bool driveStart, const CallCtx& c);
@@ -92,6 +97,7 @@ public:
   void completeCommand(Axis& ax, int64_t nowNs, uint64_t cycle, double overshoot);
 
 private:
+  bool axisChangedSlow(FbSlot& fb, Axis& ax, const CallCtx& c);
   void stepAxis(Axis& ax, int64_t nowNs, double dt, uint64_t cycle);
   void onReached(Axis& ax, int64_t nowNs, uint64_t cycle, double overshoot);
   void updatePower(Axis& ax, int64_t nowNs, uint64_t cycle);
