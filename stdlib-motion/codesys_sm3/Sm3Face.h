@@ -28,6 +28,9 @@ void registerSm3HomingNatives(MotionLibrary& lib);   // Sm3Homing.cpp (also the 
 // configured from the variable's initial values when project.toml has none);
 // null when the calling task does not own it (every FB of an axis runs in one task).
 Axis* bind(sm3::AXIS_REF_SM3* ref, const CallCtx& c);
+// The axis behind a master input: bound like bind(), but read only, so it may belong to
+// another task (its set state is then the one of that task's latest cycle).
+Axis* bindMaster(sm3::AXIS_REF_SM3* ref, const CallCtx& c);
 // Copies the axis into its AXIS_REF_SM3 variable: everything (mirrorAll; the
 // session does it once per cycle after the kernel step), or after an FB call
 // only what a call can change (mirrorCall: no drive process data).
@@ -44,6 +47,10 @@ inline void publish(void* instance, const FbOutputs& o) {
   if constexpr (requires { s->bDone; }) s->bDone = o.done;
   if constexpr (requires { s->InVelocity; }) s->InVelocity = o.inState;
   if constexpr (requires { s->InEndVelocity; }) s->InEndVelocity = o.inState;
+  if constexpr (requires { s->InGear; }) s->InGear = o.inState;
+  if constexpr (requires { s->InSync; }) s->InSync = o.inState;
+  if constexpr (requires { s->StartSync; }) s->StartSync = o.startSync;
+  if constexpr (requires { s->EndOfProfile; }) s->EndOfProfile = o.endOfProfile;
   if constexpr (requires { s->Busy; }) s->Busy = o.busy;
   if constexpr (requires { s->bBusy; }) s->bBusy = o.busy;
   if constexpr (requires { s->Active; }) s->Active = o.active;
@@ -172,4 +179,5 @@ void axisFbSlot(T* self, FbKind kind, F call) {
 namespace stc::motion {
 // Per-family registration, called at the start of registerSm3Natives().
 void registerSm3ProfilesNatives(MotionLibrary& lib);
+void registerSm3SyncNatives(MotionLibrary& lib);   // Sm3Sync.cpp: gear, phasing, cams
 }  // namespace stc::motion

@@ -102,6 +102,14 @@ void mirrorCall(Axis& ax) {
     mirrorState(ax, *static_cast<sm3::AXIS_REF_SM3*>(s.axisVars[ax.index()].var));
 }
 
+Axis* bindMaster(sm3::AXIS_REF_SM3* ref, const CallCtx& c) {
+  if (!ref) return nullptr;
+  MotionSession& s = MotionSession::current();
+  Axis* ax = ref->__stcAxis ? s.kernel.axis(ref->__stcAxis - 1) : nullptr;
+  if (ax && ax->index() < s.axisVars.size() && s.axisVars[ax->index()].var == ref) return ax;
+  return bind(ref, c);   // first use: bound (and owned) here
+}
+
 Axis* bind(sm3::AXIS_REF_SM3* ref, const CallCtx& c) {
   if (!ref) return nullptr;
   MotionSession& s = MotionSession::current();
@@ -216,6 +224,7 @@ void registerSm3Natives(MotionLibrary& lib) {
   registerSm3DiagNatives(lib);
   registerSm3ProfilesNatives(lib);
   registerSm3HomingNatives(lib);
+  registerSm3SyncNatives(lib);
   STC_SM3_NATIVE(MC_Power, MC_Power)
   STC_SM3_NATIVE(MC_Reset, MC_Reset)
   STC_SM3_NATIVE(MC_MoveAbsolute, moveBody<sm3::MC_MoveAbsolute, FbKind::MoveAbsolute>)

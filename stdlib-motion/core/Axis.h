@@ -187,6 +187,20 @@ public:
   // Coupling master (cam, gear ...): the kernel steps this axis after its master in every
   // cycle of their task, so the coupling reads the master's set state of the same cycle.
   Axis* master = nullptr;
+  // MC_Phasing: the master position this axis's coupling sees is shifted by
+  // `done` plus the profile in progress (positive = this slave lags).
+  struct PhaseShift {
+    double done = 0;
+    Profile profile;
+    int64_t originNs = 0;
+    bool moving = false;
+    Kinematic at(int64_t nowNs) const {
+      if (!moving) return Kinematic{done, 0, 0};
+      Kinematic k = profile.at(static_cast<double>(nowNs - originNs) * 1e-9);
+      k.p += done;
+      return k;
+    }
+  } phase;
 
   // ---- the cycle: advances the set point to nowNs, runs the drive, supervises.
   StepResult step(int64_t nowNs, double dt);

@@ -18,6 +18,8 @@ enum class FbKind : uint8_t {
   MoveContinuousAbsolute, MoveContinuousRelative, Halt, Stop, Jog, Inch, SetPosition, Home,
   // Kinds whose semantics live in an FbBehaviour (see below), one per family.
   Profile, Follow, Torque, Probe, CamSwitch, Parameter, Config, Diagnostic, Leadshine, Other,
+  // Couplings (Coupling.h): the slave follows a master.
+  GearIn, GearInPos, CamIn, Phasing,
 };
 
 struct FbOutputs {
@@ -26,7 +28,9 @@ struct FbOutputs {
   bool done = false;
   bool error = false;
   bool aborted = false;       // CommandAborted
-  bool inState = false;       // InVelocity / InEndVelocity
+  bool inState = false;       // InVelocity / InEndVelocity / InGear / InSync
+  bool startSync = false;     // MC_GearInPos.StartSync
+  bool endOfProfile = false;  // MC_CamIn.EndOfProfile (a one-cycle pulse in periodic mode)
   Error errorId = Error::None;
   // MC_Power only.
   bool status = false, regulatorRealState = false, driveStartRealState = false;

@@ -81,6 +81,7 @@ bool isPositionMove(FbKind k) {
 bool isContinuous(FbKind k) {
   return k == FbKind::MoveVelocity || k == FbKind::Jog || k == FbKind::MoveContinuousAbsolute || k == FbKind::MoveContinuousRelative;
 }
+bool isCoupling(FbKind k) { return k == FbKind::GearIn || k == FbKind::GearInPos || k == FbKind::CamIn; }
 bool isBlending(BufferMode m) { return m >= BufferMode::BlendingLow && m <= BufferMode::BlendingHigh; }
 
 // The error codes each move reports for bad dynamics / a bad direction.
@@ -227,6 +228,7 @@ void Kernel::abortController(Axis& ax, uint64_t cycle, Error e) {
 void Kernel::startCommand(FbSlot& fb, Axis& ax, int64_t nowNs, double frac) {
   if (frac == 0) ax.sample(nowNs);
   ax.controller = &fb;
+  ax.master = nullptr;   // a new command in control ends any coupling (couplings set it again)
   fb.axis = &ax;
   fb.out.busy = fb.out.active = true;
   fb.out.inState = false;
@@ -337,7 +339,7 @@ void Kernel::accept(FbSlot& fb, Axis& ax, const CallCtx& c) {
     return;
   }
   FbSlot* prev = ax.queue.empty() ? ax.controller : ax.queue.back();
-  if (isBlending(fb.in.bufferMode) && prev && (isContinuous(prev->kind) || prev->kind == FbKind::Halt)) {
+  if (isBlending(fb.in.bufferMode) && prev && (isContinuous(prev->kind) || isCoupling(prev->kind) || prev->kind == FbKind::Halt)) {
     fail(fb, Error::BlendingNotSupportedByPrevious, c);
     return;
   }
@@ -659,6 +661,8 @@ void Kernel::errorStop(Axis& ax, Error e, int64_t nowNs, uint64_t cycle) {
     ax.blockingStop = nullptr;
     if (s->out.busy) finish(*s, nullptr, cycle, false, false, e);
   }
+  ax.master = nullptr;
+  ax.phase.moving = false;
   ax.enterErrorStop(e, nowNs);
 }
 
