@@ -704,12 +704,14 @@ namespace {
 class DoubleCoupling : public FbBehaviour {
 public:
   Axis* master = nullptr;
+  bool hook = true;
   std::shared_ptr<DirectGenerator> gen;
   void start(Kernel&, FbSlot&, Axis& ax, int64_t nowNs) override {
     gen = std::make_shared<DirectGenerator>();
     gen->state = ax.set();
     ax.startExternal(gen, nowNs);
     ax.setState(AxisState::SynchronizedMotion);
+    if (hook) ax.master = master;   // as every coupling does when it takes control
   }
   void beforeStep(Kernel&, FbSlot&, Axis& ax, int64_t nowNs, uint64_t) override {
     const Kinematic& m = master->set();
@@ -724,7 +726,6 @@ double maxCouplingError(bool hook) {
   Axis& slave = *s.ax;
   Axis& master = s.k.addAxis(AxisConfig{});
   master.task = 0;
-  if (hook) slave.master = &master;
   FbSlot& ps = s.slot(FbKind::Power);
   FbSlot& pm = s.slot(FbKind::Power);
   FbSlot& cpl = s.slot(FbKind::Other);
@@ -733,6 +734,7 @@ double maxCouplingError(bool hook) {
   s.k.callPower(pm, master, true, true, true, s.ctx());
   auto b = std::make_unique<DoubleCoupling>();
   b->master = &master;
+  b->hook = hook;
   cpl.behaviour = std::move(b);
   double worst = 0;
   for (int k = 0; k < 300; ++k) {
