@@ -17,7 +17,10 @@ namespace {
 const char kSessionKey = 0;
 }  // namespace
 
-MotionLibrary::MotionLibrary(MotionConfig cfg) : cfg_(std::move(cfg)) { registerSm3Natives(*this); }
+MotionLibrary::MotionLibrary(MotionConfig cfg) : cfg_(std::move(cfg)) {
+  registerSm3Natives(*this);
+  registerMotionTestNatives(*this);
+}
 
 const void* MotionLibrary::sessionKey() const { return &kSessionKey; }
 std::unique_ptr<vm::NativeSession> MotionLibrary::newSession() const { return std::make_unique<MotionSession>(*this, cfg_); }

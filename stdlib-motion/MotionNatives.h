@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "stdlib-motion/core/Commands.h"
 #include "stdlib-motion/core/Kernel.h"
 #include "vm/Native.h"
 
@@ -85,6 +86,7 @@ public:
   static const void* key();
 
   Kernel kernel;
+  CommandTable commands;   // function-style commands (motion_test, Hollysys)
   // The axis variable each kernel axis is bound to, by axis index.
   struct AxisVar {
     void* var = nullptr;
@@ -133,5 +135,6 @@ CallCtx callContext();
 
 // The faces' registration (codesys_sm3/Sm3Natives.cpp and the family files).
 void registerSm3Natives(MotionLibrary& lib);
+void registerMotionTestNatives(MotionLibrary& lib);   // motion_test/MotionTestFace.cpp
 
 }  // namespace stc::motion

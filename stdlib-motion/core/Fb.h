@@ -87,6 +87,9 @@ public:
   uint64_t callSeq = 0;             // global call order (detects successor-before-predecessor)
   uint64_t terminalCycle = 0;       // cycle in which Done/Error/CommandAborted rose with Execute low
   bool clearPending = false;
+  // A command of a function-style face (Commands.h): the kernel owns it; it need not be
+  // called in every cycle and its outputs are kept until the slot is reused.
+  bool functionStyle = false;
 
   // Planned command (set when the command is accepted).
   double target = 0;                // unwrapped target of a position command

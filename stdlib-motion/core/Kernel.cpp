@@ -343,7 +343,7 @@ void Kernel::accept(FbSlot& fb, Axis& ax, const CallCtx& c) {
     fail(fb, Error::BlendingNotSupportedByPrevious, c);
     return;
   }
-  if (ax.queue.size() >= 16) {
+  if (ax.queue.size() >= profile.queueCapacity) {
     fail(fb, Error::BufferFull, c);
     return;
   }
@@ -668,7 +668,7 @@ void Kernel::errorStop(Axis& ax, Error e, int64_t nowNs, uint64_t cycle) {
 
 void Kernel::stepAxis(Axis& ax, int64_t nowNs, double dt, uint64_t cycle) {
   // A command in control must be called in every cycle until its motion ends.
-  if (FbSlot* fb = ax.controller; fb && fb->out.busy && fb->lastCallCycle != cycle && fb->kind != FbKind::Stop)
+  if (FbSlot* fb = ax.controller; fb && fb->out.busy && fb->lastCallCycle != cycle && fb->kind != FbKind::Stop && !fb->functionStyle)
     errorStop(ax, Error::FbWasntCalledDuringMotion, nowNs, cycle);
   if (FbSlot* fb = ax.controller; fb && fb->behaviour) fb->behaviour->beforeStep(*this, *fb, ax, nowNs, cycle);
   StepResult r = ax.step(nowNs, dt);

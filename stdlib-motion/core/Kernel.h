@@ -24,6 +24,8 @@ struct VendorProfile {
   bool jogBusyEndsAtRelease = true;
   // Motion commands accepted while the axis is synchronized (aborting the coupling).
   bool movesAbortSynchronized = true;
+  // Commands an axis holds behind the running one (SoftMotion: 16; Hollysys FIFOs: 64).
+  size_t queueCapacity = 16;
   // The profile of an instruction set by its name: "amc1600c", "leadshine_pmc600"; false if unknown.
   static bool named(std::string_view name, VendorProfile& out);
 };
