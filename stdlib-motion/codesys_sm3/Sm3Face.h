@@ -51,6 +51,7 @@ inline void publish(void* instance, const FbOutputs& o) {
   if constexpr (requires { s->InSync; }) s->InSync = o.inState;
   if constexpr (requires { s->StartSync; }) s->StartSync = o.startSync;
   if constexpr (requires { s->EndOfProfile; }) s->EndOfProfile = o.endOfProfile;
+  if constexpr (requires { s->bCompensating; }) s->bCompensating = o.inState;
   if constexpr (requires { s->Busy; }) s->Busy = o.busy;
   if constexpr (requires { s->bBusy; }) s->bBusy = o.busy;
   if constexpr (requires { s->Active; }) s->Active = o.active;

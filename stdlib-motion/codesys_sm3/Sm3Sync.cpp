@@ -62,6 +62,20 @@ void MC_Phasing(sm3::MC_Phasing* self) {
   });
 }
 
+void SMC_BacklashCompensation(sm3::SMC_BacklashCompensation* self) {
+  coupledFb(self, [&](Kernel& k, Axis& m, Axis& s, const CallCtx& c) {
+    BacklashInputs in;
+    in.backlash = self->fBacklash;
+    in.velocity = self->fCompensationVel;
+    in.acceleration = self->fCompensationAcc;
+    in.deceleration = self->fCompensationDec;
+    in.jerk = self->fCompensationJerk;
+    in.mode = static_cast<BacklashMode>(self->eBacklashMode);
+    in.start = static_cast<BacklashStart>(self->eBacklashStartState);
+    callBacklash(k, slotOf(self, FbKind::Backlash), m, s, self->bExecute, in, c);
+  });
+}
+
 }  // namespace
 
 namespace stc::motion {
@@ -71,6 +85,7 @@ void registerSm3SyncNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(MC_GearInPos, MC_GearInPos)
   STC_SM3_NATIVE(MC_GearOut, MC_GearOut)
   STC_SM3_NATIVE(MC_Phasing, MC_Phasing)
+  STC_SM3_NATIVE(SMC_BacklashCompensation, SMC_BacklashCompensation)
 }
 
 }  // namespace stc::motion

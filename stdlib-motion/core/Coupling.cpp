@@ -32,6 +32,7 @@ bool couplingLoop(const Axis& master, const Axis& slave) {
 namespace {
 
 bool isGear(FbKind k) { return k == FbKind::GearIn || k == FbKind::GearInPos; }
+bool isCouplingKind(FbKind k) { return isGear(k) || k == FbKind::CamIn || k == FbKind::Backlash; }
 
 // The common part: a DirectGenerator as the slave's movement, written each cycle.
 class CouplingBehaviour : public FbBehaviour {
@@ -221,6 +222,48 @@ public:
   }
 };
 
+// SMC_BacklashCompensation: the offset's target follows the master's direction of travel
+// (or the forced mode); each change of target is a profile from the offset's current state.
+class BacklashBehaviour : public CouplingBehaviour {
+public:
+  BacklashInputs in;
+  double target = 0;
+  Profile profile;
+  double originT = 0, t = 0;
+  bool moving = false;
+
+  void retarget(double to, const Kinematic& from) {
+    target = to;
+    const Limits lim{in.velocity, in.acceleration, in.deceleration, in.jerk};
+    moving = planPosition(Kinematic{from.p, from.v, from.a}, to, 0, lim, profile) == PlanStatus::Ok && profile.duration() > 0;
+    originT = t;
+  }
+  Kinematic offset() const { return moving ? profile.at(t - originT) : Kinematic{target, 0, 0}; }
+
+protected:
+  void restart() override { t = 0; }
+  Error advance(const Kinematic& m, const Kinematic& prev, double dt, FbSlot& fb, Axis&, Kinematic& next) override {
+    if (t == 0 && !moving) {
+      // Start: the slave's distance to the master is the first offset, moved to the start value.
+      const double b = in.backlash;
+      const double start = in.start == BacklashStart::Negative ? -b : in.start == BacklashStart::Positive ? b : 0.0;
+      target = prev.p - m.p;
+      retarget(in.mode == BacklashMode::Positive ? b : in.mode == BacklashMode::Negative ? -b : in.mode == BacklashMode::Off ? 0 : start,
+               Kinematic{target, 0, 0});
+    }
+    t += dt;
+    if (moving && t - originT >= profile.duration() - Axis::kEndTolerance - 1e-12 * t) moving = false;   // t sums dt: allow its rounding
+    if (in.mode == BacklashMode::Auto && m.v != 0) {
+      const double want = m.v > 0 ? in.backlash : -in.backlash;
+      if (want != target) retarget(want, offset());
+    }
+    const Kinematic o = offset();
+    next = Kinematic{m.p + o.p, m.v + o.v, m.a + o.a};
+    fb.out.inState = moving;   // bCompensating
+    return Error::None;
+  }
+};
+
 bool validRatio(int64_t num, int64_t den) { return den != 0 && std::llabs(num) <= 1'000'000'000 && std::llabs(den) <= 1'000'000'000; }
 
 // Checks shared by the couplings; Error::None when the slave may follow the master.
@@ -317,7 +360,7 @@ void callPhasing(Kernel& k, FbSlot& fb, Axis& master, Axis& slave, bool execute,
       !bounds::position(in.phaseShift))
     return k.fail(fb, Error::PhInvalidVelAccDec, c);
   FbSlot* coupling = slave.controller;
-  if (!coupling || slave.master != &master || !(isGear(coupling->kind) || coupling->kind == FbKind::CamIn))
+  if (!coupling || slave.master != &master || !isCouplingKind(coupling->kind))
     return k.fail(fb, Error::NotReadyForMotion, c);
   Axis::PhaseShift& ph = slave.phase;
   // A shift in progress continues from its current state (its distance so far is kept).
@@ -339,6 +382,23 @@ void callPhasing(Kernel& k, FbSlot& fb, Axis& master, Axis& slave, bool execute,
   if (std::find(slave.observers.begin(), slave.observers.end(), &fb) == slave.observers.end()) slave.observers.push_back(&fb);
   fb.out.busy = fb.out.active = true;
   fb.sync();
+}
+
+void callBacklash(Kernel& k, FbSlot& fb, Axis& master, Axis& slave, bool execute, const BacklashInputs& in, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  fb.axis = &slave;
+  if (!bounds::position(in.backlash) || in.backlash < 0 || (master.isModulo() && in.backlash > master.config().period / 2))
+    return k.fail(fb, Error::BcBacklashTooBig, c);
+  if (!bounds::velocity(in.velocity) || !bounds::rate(in.acceleration) || !bounds::rate(in.deceleration) || !bounds::jerk(in.jerk))
+    return k.fail(fb, Error::PhInvalidVelAccDec, c);
+  if (static_cast<int>(in.mode) > 3 || static_cast<int>(in.start) > 2) return k.fail(fb, Error::NotReadyForMotion, c);
+  if (Error e = couplingError(k, master, slave); e != Error::None) return k.fail(fb, e, c);
+  auto& b = behaviourOf<BacklashBehaviour>(fb);
+  b.master = &master;
+  b.in = in;
+  b.moving = false;
+  fb.in = MoveInputs{};
+  k.accept(fb, slave, c);
 }
 
 }  // namespace stc::motion

@@ -7,6 +7,7 @@
 //                 distance brings the slave to SlaveSyncPosition at MasterSyncPosition;
 //   MC_CamIn      a cam table (Cam.h) with offsets, scalings and start modes;
 //   MC_Phasing    shifts the master position a coupling sees (a profile of its own);
+//   SMC_BacklashCompensation  slave = master + a direction-dependent offset;
 //   MC_GearOut / MC_CamOut  end the coupling, the slave keeps its velocity.
 #pragma once
 
@@ -40,6 +41,17 @@ struct PhasingInputs {
   double phaseShift = 0, velocity = 0, acceleration = 0, deceleration = 0, jerk = 0;
 };
 void callPhasing(Kernel& k, FbSlot& fb, Axis& master, Axis& slave, bool execute, const PhasingInputs& in, const CallCtx& c);
+
+// SMC_BacklashCompensation: slave = master + an offset of +-backlash chosen by the
+// master's direction (or forced), moved with the compensation dynamics.
+enum class BacklashMode : uint8_t { Auto = 0, Positive = 1, Negative = 2, Off = 3 };
+enum class BacklashStart : uint8_t { None = 0, Negative = 1, Positive = 2 };
+struct BacklashInputs {
+  double backlash = 0, velocity = 0, acceleration = 0, deceleration = 0, jerk = 0;
+  BacklashMode mode = BacklashMode::Auto;
+  BacklashStart start = BacklashStart::None;
+};
+void callBacklash(Kernel& k, FbSlot& fb, Axis& master, Axis& slave, bool execute, const BacklashInputs& in, const CallCtx& c);
 
 // The master position, velocity and acceleration a coupling of `slave` sees this
 // cycle: the master's set state minus the phase shift of MC_Phasing.

@@ -19,7 +19,7 @@ enum class FbKind : uint8_t {
   // Kinds whose semantics live in an FbBehaviour (see below), one per family.
   Profile, Follow, Torque, Probe, CamSwitch, Parameter, Config, Diagnostic, Leadshine, Other,
   // Couplings (Coupling.h): the slave follows a master.
-  GearIn, GearInPos, CamIn, Phasing,
+  GearIn, GearInPos, CamIn, Phasing, Backlash,
 };
 
 struct FbOutputs {

@@ -81,7 +81,7 @@ bool isPositionMove(FbKind k) {
 bool isContinuous(FbKind k) {
   return k == FbKind::MoveVelocity || k == FbKind::Jog || k == FbKind::MoveContinuousAbsolute || k == FbKind::MoveContinuousRelative;
 }
-bool isCoupling(FbKind k) { return k == FbKind::GearIn || k == FbKind::GearInPos || k == FbKind::CamIn; }
+bool isCoupling(FbKind k) { return k == FbKind::GearIn || k == FbKind::GearInPos || k == FbKind::CamIn || k == FbKind::Backlash; }
 bool isBlending(BufferMode m) { return m >= BufferMode::BlendingLow && m <= BufferMode::BlendingHigh; }
 
 // The error codes each move reports for bad dynamics / a bad direction.
