@@ -181,4 +181,5 @@ namespace stc::motion {
 // Per-family registration, called at the start of registerSm3Natives().
 void registerSm3ProfilesNatives(MotionLibrary& lib);
 void registerSm3SyncNatives(MotionLibrary& lib);   // Sm3Sync.cpp: gear, phasing, cams
+void registerLsFollowNatives(MotionLibrary& lib);   // leadshine/LsFollow.cpp
 }  // namespace stc::motion
