@@ -26,7 +26,8 @@ const void* MotionLibrary::sessionKey() const { return &kSessionKey; }
 std::unique_ptr<vm::NativeSession> MotionLibrary::newSession() const { return std::make_unique<MotionSession>(*this, cfg_); }
 
 bool MotionLibrary::readProject(const std::string& dir, const std::vector<std::string>& libraries, std::string& error) {
-  return loadProjectAxes(dir, cfg_.axes, error) && loadProjectIo(dir, cfg_.io, error) &&
+  cfg_.filesDir = dir;
+  return loadProjectAxes(dir, cfg_.axes, error) && loadProjectIo(dir, cfg_.io, error) && loadProjectCams(dir, cfg_.cams, error) &&
          loadProjectVendorProfile(dir, libraries, cfg_.profile, error);
 }
 
@@ -47,6 +48,23 @@ void MotionSession::bindVar(const Axis& ax, void* var, void (*mirrorFn)(const Ax
 // Binds every configured axis to its AXIS_REF variable and task.
 bool MotionSession::start(const vm::StartCtx& sc, std::string& error) {
   Kernel& k = kernel;
+  imageBegin_ = sc.image;
+  imageEnd_ = sc.image + sc.imageSize;
+  // The cams of project.toml into their variables.
+  for (const CamConfig& cc : cfg_.cams) {
+    std::string type;
+    void* var = sc.lookup(cc.var, type);
+    const auto& cf = lib_.camFaces();
+    auto f = std::find_if(cf.begin(), cf.end(), [&](const CamFace& p) { return p.typeName == type; });
+    if (!var || f == cf.end()) {
+      error = "project.toml: cam '" + cc.var + "' has no cam variable of that name in the program (declare it, e.g. '" + cc.var +
+              " : MC_CAM_REF;' in a VAR_GLOBAL)";
+      return false;
+    }
+    const uint64_t id = cams.nextId++;
+    cams.held[id] = cc.cam;
+    f->bound(var, *cc.cam, id);
+  }
   for (const AxisConfig& cfg : cfg_.axes) {
     std::string type;
     void* ref = sc.lookup(cfg.name, type);

@@ -8,9 +8,11 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "stdlib-motion/core/Commands.h"
+#include "stdlib-motion/core/Coupling.h"
 #include "stdlib-motion/core/Kernel.h"
 #include "vm/Native.h"
 
@@ -27,11 +29,22 @@ struct IoDevice {
   int64_t delayNs = 0;
 };
 
+// A cam table defined in project.toml ([[cam]], docs/motion-cam.md), put into
+// the cam variable `var` at start.
+struct CamConfig {
+  std::string var;
+  std::shared_ptr<const Cam> cam;
+};
+
 // What a run's motion needs from project.toml and the command line.
 struct MotionConfig {
   std::vector<AxisConfig> axes;    // [[axis]]
   std::vector<IoDevice> io;        // [[io]]
+  std::vector<CamConfig> cams;     // [[cam]]
   VendorProfile profile;           // [project] motion_profile, else by the libraries used
+  // Where SMC_ReadCAM / SMC_WriteCAM files live (they never leave it): the project
+  // directory, or for loose files the directory of the first one.
+  std::string filesDir;
 };
 
 // How a face binds a configured axis to an axis variable of its type (e.g.
@@ -40,6 +53,13 @@ struct AxisFace {
   std::string typeName;
   void (*mirror)(const Axis& ax, void* var) = nullptr;
   void (*bound)(void* var, const Axis& ax) = nullptr;   // writes the binding into the variable
+};
+
+// How a face fills a cam variable of its type (e.g. MC_CAM_REF) with a cam the
+// controller holds under `id`.
+struct CamFace {
+  std::string typeName;
+  void (*bound)(void* var, const Cam& cam, uint64_t id) = nullptr;
 };
 
 // The motion library as the controller sees it: the natives of every face
@@ -62,11 +82,14 @@ public:
   void add(vm::NativeEntry e) { natives_.push_back(std::move(e)); }
   void addAxisFace(AxisFace f) { faces_.push_back(std::move(f)); }
   const std::vector<AxisFace>& axisFaces() const { return faces_; }
+  void addCamFace(CamFace f) { camFaces_.push_back(std::move(f)); }
+  const std::vector<CamFace>& camFaces() const { return camFaces_; }
 
 private:
   MotionConfig cfg_;
   std::vector<vm::NativeEntry> natives_;
   std::vector<AxisFace> faces_;
+  std::vector<CamFace> camFaces_;
 };
 
 struct IoRuntime;   // ProjectIo.cpp
@@ -98,11 +121,28 @@ public:
     if (ax.index() < axisVars.size() && axisVars[ax.index()].mirror) axisVars[ax.index()].mirror(ax, axisVars[ax.index()].var);
   }
 
+  // Cams the controller holds (project.toml, SMC_ReadCAM) and the selections of
+  // MC_CamTableSelect, by id (ids are never reused, so a stale id finds nothing).
+  struct CamStore {
+    std::unordered_map<uint64_t, std::shared_ptr<const Cam>> held;
+    std::unordered_map<uint64_t, CamSelection> selections;
+    std::unordered_map<const void*, int> registerUsers;   // enabled SMC_CamRegister per cam variable
+    uint64_t nextId = 1;
+  } cams;
+  // Cam data that ST points to must lie in the controller's static memory (never a stack frame).
+  bool inImage(const void* p, uint64_t bytes) const {
+    const auto* b = static_cast<const uint8_t*>(p);
+    return b && b >= imageBegin_ && bytes <= static_cast<uint64_t>(imageEnd_ - b);
+  }
+  const std::string& filesDir() const { return cfg_.filesDir; }
+
 private:
   [[noreturn]] static void noSession();
   const MotionLibrary& lib_;
   MotionConfig cfg_;
   std::shared_ptr<IoRuntime> io_;
+  const uint8_t* imageBegin_ = nullptr;
+  const uint8_t* imageEnd_ = nullptr;
 };
 
 // The kernel of the calling controller.
@@ -121,6 +161,11 @@ bool loadProjectVendorProfile(const std::string& dir, const std::vector<std::str
 VendorProfile defaultVendorProfile(const std::vector<std::string>& libraries);
 
 bool loadProjectIo(const std::string& dir, std::vector<IoDevice>& out, std::string& error);
+// The [[cam]] tables of dir/project.toml (ProjectCams.cpp).
+bool loadProjectCams(const std::string& dir, std::vector<CamConfig>& out, std::string& error);
+// A file name given by a program, resolved inside `dir`; false (with `why`) for an absolute
+// path, a path that leaves the directory (also through a symbolic link) or an empty name.
+bool resolveProjectFile(const std::string& dir, const std::string& name, std::string& path, std::string& why);
 // ProjectIo.cpp: binds the devices at start; evaluates them after each task slot.
 std::shared_ptr<IoRuntime> startIo(const vm::StartCtx& sc, const std::vector<IoDevice>& devices, Kernel& k, std::string& error);
 void cycleIo(IoRuntime& io, int64_t nowNs);

@@ -173,7 +173,7 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
     sched_->addCycleHook("native-" + std::to_string(i), [s](const HookCtx& c) { s->cycle(c); });
   }
   {
-    StartCtx sc{*sched_, image_, [this, &layout](const std::string& path, std::string& typeName) -> void* {
+    StartCtx sc{*sched_, image_, module_->image.size, [this, &layout](const std::string& path, std::string& typeName) -> void* {
                   ValueRef ref;
                   std::string e;
                   if (!resolvePath(module_->image, layout, path, ref, e) || ref.bit >= 0) return nullptr;

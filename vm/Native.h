@@ -36,6 +36,7 @@ class Scheduler;
 struct StartCtx {
   Scheduler& scheduler;
   uint8_t* image;
+  uint64_t imageSize;          // bytes: [image, image + imageSize) holds every static variable
   // The address of a variable (`GVL.x`, `Axis1`) and its type name; null if none.
   std::function<void*(const std::string& path, std::string& typeName)> lookup;
   // A BOOL variable, also one AT a bit address (%IX0.1), for simulated devices:

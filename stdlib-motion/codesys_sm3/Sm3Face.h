@@ -180,6 +180,7 @@ void axisFbSlot(T* self, FbKind kind, F call) {
 namespace stc::motion {
 // Per-family registration, called at the start of registerSm3Natives().
 void registerSm3ProfilesNatives(MotionLibrary& lib);
-void registerSm3SyncNatives(MotionLibrary& lib);   // Sm3Sync.cpp: gear, phasing, cams
+void registerSm3SyncNatives(MotionLibrary& lib);   // Sm3Sync.cpp: gear, phasing, backlash
+void registerSm3CamNatives(MotionLibrary& lib);    // Sm3Cam.cpp: cams, tappets, cam files
 void registerLsFollowNatives(MotionLibrary& lib);   // leadshine/LsFollow.cpp
 }  // namespace stc::motion

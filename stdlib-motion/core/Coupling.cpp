@@ -13,8 +13,13 @@
 
 namespace stc::motion {
 
+Kinematic masterState(const Axis& master) {
+  // An encoder axis has no set point: its counts are the master.
+  return master.config().drive.kind == AxisKind::Encoder ? Kinematic{master.actPosition(), master.actVelocity(), 0} : master.set();
+}
+
 Kinematic masterSeenBy(const Axis& slave, const Axis& master, int64_t nowNs) {
-  Kinematic m = master.set();
+  Kinematic m = masterState(master);
   const Kinematic s = slave.phase.at(nowNs);
   m.p -= s.p;
   m.v -= s.v;
@@ -57,14 +62,15 @@ public:
     lastNs = nowNs;
     const Kinematic prev = gen->state;
     Kinematic next = prev;
-    const bool wasIn = fb.out.inState, wasStart = fb.out.startSync;
+    const bool wasIn = fb.out.inState, wasStart = fb.out.startSync, wasEnd = fb.out.endOfProfile;
     Error e = advance(masterSeenBy(ax, *master, nowNs), prev, dt, fb, ax, next);
     if (e != Error::None) return k.errorStop(ax, e, nowNs, cycle);
     gen->state = next;
     gen->tSet = ax.movement().t(nowNs);
-    if (fb.out.inState != wasIn || fb.out.startSync != wasStart) fb.sync();
-    // A buffered successor takes over once the coupling is established (as after a continuous move).
-    if (fb.out.inState && !wasIn && !ax.queue.empty()) {
+    if (fb.out.inState != wasIn || fb.out.startSync != wasStart || fb.out.endOfProfile != wasEnd) fb.sync();
+    // A buffered successor takes over once the coupling is established (as after a
+    // continuous move); after a cam, at its end of profile.
+    if (handover(fb, wasIn, wasEnd) && !ax.queue.empty()) {
       FbSlot* succ = ax.queue.front();
       ax.queue.erase(ax.queue.begin());
       ax.controller = nullptr;
@@ -77,6 +83,7 @@ public:
 
 protected:
   virtual void restart() {}
+  virtual bool handover(const FbSlot& fb, bool wasIn, bool /*wasEnd*/) const { return fb.out.inState && !wasIn; }
   // The slave's set state of this cycle from the master's (m) and its own previous one.
   virtual Error advance(const Kinematic& m, const Kinematic& prev, double dt, FbSlot& fb, Axis& ax, Kinematic& next) = 0;
 };
@@ -205,6 +212,139 @@ private:
     }
     return q.reverses(sdir * (span > 0 ? 1 : -1)) ? Error::GipSlaveReversalCannotBeAvoided : Error::None;
   }
+};
+
+// MC_CamIn.  The cam coordinate X = X0 + MasterScaling·(master - master at start), with
+// X0 = MasterScaling·master + MasterOffset (master absolute; a modulo master by its
+// position within the period) or xStart + MasterOffset (master relative).  A periodic
+// cam wraps X into [xStart, xEnd) and adds its lift per period; a non-periodic one
+// ends at xEnd (EndOfProfile held, the slave stays).  The slave's target is
+// SlaveScaling·(y + periods·lift) + SlaveOffset, moved by a base that makes the
+// relative modes start where the slave is; the ramp_in modes add a compensation that
+// runs from the slave's start offset to 0 within VelocityDiff / Acceleration / Deceleration.
+class CamBehaviour : public CouplingBehaviour {
+public:
+  CamInInputs in;
+  uint32_t resets = 0;
+  void configure(const CamInInputs& i) {
+    in = i;
+    first = true;
+    ++resets;
+  }
+
+protected:
+  void restart() override { first = true; }
+  bool handover(const FbSlot& fb, bool, bool wasEnd) const override { return fb.out.endOfProfile && !wasEnd; }
+  Error advance(const Kinematic& m, const Kinematic& prev, double dt, FbSlot& fb, Axis& ax, Kinematic& next) override {
+    const Cam& cam = *in.sel.cam;
+    const double L = cam.length(), Ms = in.masterScaling;
+    if (first) {
+      first = false;
+      m0 = m.p;
+      double mStart = m.p;
+      if (master->isModulo()) mStart = m.p - master->config().period * std::floor(m.p / master->config().period);
+      X0 = in.sel.masterAbsolute ? Ms * mStart + in.masterOffset : cam.xStart() + in.masterOffset;
+      if (!in.sel.periodic && (X0 < cam.xStart() - 1e-9 * L || X0 > cam.xEnd() + 1e-9 * L)) return Error::CiMasterOutOfScale;
+      k0 = in.sel.periodic ? std::floor((X0 - cam.xStart()) / L) : 0;
+      kLast = k0;
+      const Sample t0 = target(cam, m, 0);
+      // Where the cam's slave coordinates sit on the (unwrapped) slave axis.
+      base = 0;
+      const bool relative = !in.sel.slaveAbsolute || in.startMode == CamStartMode::Relative;
+      const double P = ax.isModulo() ? ax.config().period : 0;
+      double comp0 = 0;
+      if (relative) {
+        base = prev.p - t0.k.p;
+      } else {
+        if (P > 0) base = P * std::round((prev.p - t0.k.p) / P);
+        comp0 = prev.p - (t0.k.p + base);
+        if (P > 0 && in.startMode == CamStartMode::RampInPos) comp0 -= P * std::ceil(comp0 / P);     // (-P, 0]: catch up forwards
+        if (P > 0 && in.startMode == CamStartMode::RampInNeg) comp0 -= P * std::floor(comp0 / P);    // [0, P): backwards
+        base = prev.p - comp0 - t0.k.p;
+      }
+      ramping = false;
+      if (in.startMode >= CamStartMode::RampIn && comp0 != 0) {
+        const Limits lim{in.velocityDiff, in.acceleration, in.deceleration, in.jerk};
+        const double dv = std::clamp(prev.v - t0.k.v, -in.velocityDiff, in.velocityDiff);
+        if (planPosition(Kinematic{comp0, dv, 0}, 0, 0, lim, comp) != PlanStatus::Ok &&
+            planPosition(Kinematic{comp0, 0, 0}, 0, 0, lim, comp) != PlanStatus::Ok)
+          return Error::CiRampInNeedsVelAcc;
+        ramping = comp.duration() > 0;
+        tComp = 0;
+      }
+      if (!cam.tappets().empty()) {
+        tappets.reset(cam.tappets(), t0.x, in.tappetHysteresis);
+        publish(fb);
+      }
+      fb.out.endOfProfile = false;
+    }
+    const Sample t = target(cam, m, 1);
+    if (!cam.tappets().empty() && tappets.move(t.x)) publish(fb);
+    // A one-cycle pulse per period boundary passed (periodic), held from the end on (non-periodic).
+    fb.out.endOfProfile = in.sel.periodic ? fbEnd : (fbEnd || fb.out.endOfProfile);
+    next = Kinematic{t.k.p + base, t.k.v, t.k.a};
+    if (ramping) {
+      tComp += dt;
+      if (tComp >= comp.duration() - Axis::kEndTolerance - 1e-12 * tComp) ramping = false;
+      else {
+        const Kinematic c = comp.at(tComp);
+        next.p += c.p, next.v += c.v, next.a += c.a;
+      }
+    }
+    fb.out.inState = !ramping;
+    return Error::None;
+  }
+
+private:
+  struct Sample {
+    Kinematic k;
+    double x = 0;   // the cam coordinate within [xStart, xEnd]
+  };
+  // The cam target (without base) for master state m; phase 1 also advances the
+  // period count, EndOfProfile and the tappets.
+  Sample target(const Cam& cam, const Kinematic& m, int phase) {
+    const double L = cam.length();
+    const double Ms = in.masterScaling, Ss = in.slaveScaling;
+    const double X = X0 + Ms * (m.p - m0);
+    Sample r;
+    double periods = 0, dydx, d2;
+    bool stopped = false;
+    if (in.sel.periodic) {
+      const double kAbs = std::floor((X - cam.xStart()) / L);
+      r.x = X - kAbs * L;
+      periods = kAbs - k0;
+      if (phase == 1) {
+        fbEnd = kAbs != kLast;
+        if (fbEnd && !cam.tappets().empty()) {
+          // Pass the boundary (each one if the master crossed several in one cycle).
+          const bool fwd = kAbs > kLast;
+          for (int n = 0; n < std::min(2.0, std::fabs(kAbs - kLast)); ++n) {
+            tappets.move(fwd ? cam.xEnd() : cam.xStart());
+            tappets.wrap(fwd ? cam.xStart() : cam.xEnd());
+          }
+        }
+        kLast = kAbs;
+      }
+    } else {
+      r.x = std::clamp(X, cam.xStart(), cam.xEnd());
+      stopped = X >= cam.xEnd() || X <= cam.xStart() - 1e-9 * L;
+      if (phase == 1) fbEnd = X >= cam.xEnd();
+    }
+    const CamSample s = cam.at(r.x);
+    dydx = stopped ? 0 : s.dy;
+    d2 = stopped ? 0 : s.ddy;
+    const double mv = Ms * m.v, ma = Ms * m.a;
+    r.k = Kinematic{Ss * (s.y + periods * cam.lift()) + in.slaveOffset, Ss * dydx * mv, Ss * (d2 * mv * mv + dydx * ma)};
+    return r;
+  }
+  void publish(FbSlot& fb) {
+    if (in.publishTappets && fb.instance) in.publishTappets(fb.instance, tappets.groups(), resets);
+  }
+
+  bool first = true, ramping = false, fbEnd = false;
+  double m0 = 0, X0 = 0, k0 = 0, kLast = 0, base = 0, tComp = 0;
+  Profile comp;
+  TappetTracker tappets;
 };
 
 // MC_Phasing: plans the shift as a profile of its own; Done when it has run out.
@@ -348,7 +488,9 @@ void callCouplingOut(Kernel& k, FbSlot& fb, Axis& slave, bool execute, bool cam,
   // The slave keeps the velocity of its last set state (the coupling's generator runs on).
   slave.controller = nullptr;
   slave.master = nullptr;
-  k.finish(*coupling, &c, c.cycle, false, true, Error::None);
+  // MC_CamIn ends quietly (the manual's chart: Busy and InSync fall, CommandAborted stays
+  // FALSE); a gear shows CommandAborted.
+  k.finish(*coupling, &c, c.cycle, false, !cam, Error::None);
   slave.setState(AxisState::ContinuousMotion);
   k.finish(fb, &c, c.cycle, true, false, Error::None);
 }
@@ -399,6 +541,52 @@ void callBacklash(Kernel& k, FbSlot& fb, Axis& master, Axis& slave, bool execute
   b.moving = false;
   fb.in = MoveInputs{};
   k.accept(fb, slave, c);
+}
+
+namespace {
+bool scalingOk(double v) { return std::isfinite(v) && v > 0 && v <= 1e9; }
+}  // namespace
+
+void callCamIn(Kernel& k, FbSlot& fb, Axis& master, Axis& slave, bool execute, const CamInInputs& in, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  fb.axis = &slave;
+  fb.out.endOfProfile = false;
+  if (!in.sel.cam) return k.fail(fb, Error::CiNoCamSelected, c);
+  const Cam& cam = *in.sel.cam;
+  if (!scalingOk(in.masterScaling) || !scalingOk(in.slaveScaling) || !bounds::position(in.masterOffset) ||
+      !bounds::position(in.slaveOffset) || static_cast<int>(in.startMode) > 4 || !std::isfinite(in.tappetHysteresis) ||
+      in.tappetHysteresis < 0 || in.tappetHysteresis > cam.length())
+    return k.fail(fb, Error::CiScalingIncorrect, c);
+  if (in.startMode >= CamStartMode::RampIn &&
+      (!bounds::velocity(in.velocityDiff) || !bounds::rate(in.acceleration) || !bounds::rate(in.deceleration) || !bounds::jerk(in.jerk)))
+    return k.fail(fb, Error::CiRampInNeedsVelAcc, c);
+  if (Error e = couplingError(k, master, slave); e != Error::None) return k.fail(fb, e, c);
+  // A non-periodic cam with an absolute master must start inside its master range.
+  if (!in.sel.periodic && in.sel.masterAbsolute) {
+    double mp = masterSeenBy(slave, master, c.nowNs).p;
+    if (master.isModulo()) mp -= master.config().period * std::floor(mp / master.config().period);
+    const double X = in.masterScaling * mp + in.masterOffset;
+    if (X < cam.xStart() - 1e-9 * cam.length() || X > cam.xEnd() + 1e-9 * cam.length()) return k.fail(fb, Error::CiMasterOutOfScale, c);
+  }
+  auto& b = behaviourOf<CamBehaviour>(fb);
+  b.master = &master;
+  b.configure(in);
+  fb.in = MoveInputs{};
+  fb.in.bufferMode = in.bufferMode;
+  k.accept(fb, slave, c);
+}
+
+bool camSlaveState(const CamSelection& sel, double masterOffset, double slaveOffset, double masterScaling, double slaveScaling,
+                   const Kinematic& m, Kinematic& out) {
+  const Cam& cam = *sel.cam;
+  const double X = masterScaling * m.p + masterOffset;
+  double x = X;
+  if (sel.periodic) x = X - cam.length() * std::floor((X - cam.xStart()) / cam.length());
+  else if (X < cam.xStart() || X > cam.xEnd()) return false;
+  const CamSample s = cam.at(x);
+  const double mv = masterScaling * m.v, ma = masterScaling * m.a;
+  out = Kinematic{slaveScaling * s.y + slaveOffset, slaveScaling * s.dy * mv, slaveScaling * (s.ddy * mv * mv + s.dy * ma)};
+  return true;
 }
 
 }  // namespace stc::motion

@@ -12,7 +12,9 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
+#include "stdlib-motion/core/Cam.h"
 #include "stdlib-motion/core/Kernel.h"
 
 namespace stc::motion {
@@ -34,6 +36,34 @@ struct GearInPosInputs {
 };
 void callGearInPos(Kernel& k, FbSlot& fb, Axis& master, Axis& slave, bool execute, const GearInPosInputs& in, const CallCtx& c);
 
+// A cam chosen for a master/slave pair (MC_CamTableSelect): a snapshot of the
+// table, shared by the couplings that use it, and how the pair follows it.
+struct CamSelection {
+  std::shared_ptr<const Cam> cam;
+  bool periodic = false, masterAbsolute = false, slaveAbsolute = false;
+};
+
+enum class CamStartMode : uint8_t { Absolute = 0, Relative = 1, RampIn = 2, RampInPos = 3, RampInNeg = 4 };
+struct CamInInputs {
+  CamSelection sel;
+  double masterOffset = 0, slaveOffset = 0, masterScaling = 1, slaveScaling = 1;
+  CamStartMode startMode = CamStartMode::Absolute;
+  double velocityDiff = 0, acceleration = 0, deceleration = 0, jerk = 0;   // ramp_in modes
+  double tappetHysteresis = 0;
+  BufferMode bufferMode = BufferMode::Aborting;
+  // Writes the tappet groups into the FB instance, in the kernel cycle they change
+  // (`resets` counts the couplings started, for SMC_GetTappetValue).
+  void (*publishTappets)(void* instance, const TappetTracker::Groups& groups, uint32_t resets) = nullptr;
+};
+// MC_CamIn: slave = SlaveScaling * CAM(MasterScaling * master + MasterOffset) + SlaveOffset
+// (docs/motion-cam.md for the relative modes, start modes and periods).
+void callCamIn(Kernel& k, FbSlot& fb, Axis& master, Axis& slave, bool execute, const CamInInputs& in, const CallCtx& c);
+
+// The slave state the cam gives for the master state m in absolute coordinates
+// (SMC_GetCamSlaveSetPosition); false when a non-periodic cam does not reach m.
+bool camSlaveState(const CamSelection& sel, double masterOffset, double slaveOffset, double masterScaling, double slaveScaling,
+                   const Kinematic& m, Kinematic& out);
+
 // MC_GearOut (kinds: GearIn, GearInPos) and MC_CamOut (CamIn, Follow): Done in the edge's call.
 void callCouplingOut(Kernel& k, FbSlot& fb, Axis& slave, bool execute, bool cam, const CallCtx& c);
 
@@ -53,6 +83,8 @@ struct BacklashInputs {
 };
 void callBacklash(Kernel& k, FbSlot& fb, Axis& master, Axis& slave, bool execute, const BacklashInputs& in, const CallCtx& c);
 
+// What a master gives its followers: the set state, or the actual one of an encoder axis.
+Kinematic masterState(const Axis& master);
 // The master position, velocity and acceleration a coupling of `slave` sees this
 // cycle: the master's set state minus the phase shift of MC_Phasing.
 Kinematic masterSeenBy(const Axis& slave, const Axis& master, int64_t nowNs);

@@ -158,7 +158,7 @@ bool Kernel::beginExecute(FbSlot& fb, bool execute, const CallCtx& c) {
 
 void Kernel::finish(FbSlot& fb, const CallCtx* c, uint64_t cycle, bool done, bool aborted, Error e) {
   (void)c;
-  fb.out.busy = fb.out.active = fb.out.inState = false;
+  fb.out.busy = fb.out.active = fb.out.inState = fb.out.startSync = fb.out.endOfProfile = false;
   fb.out.done = done;
   fb.out.aborted = aborted;
   fb.out.error = e != Error::None;

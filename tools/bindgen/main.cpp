@@ -55,7 +55,10 @@ struct Gen {
       case TypeKind::Time: case TypeKind::LTime: case TypeKind::Date: case TypeKind::LDate:
       case TypeKind::Tod: case TypeKind::LTod: case TypeKind::DT: case TypeKind::LDT:
         return "int64_t";   // nanoseconds
-      case TypeKind::Pointer: case TypeKind::Reference: return "void*";
+      case TypeKind::Pointer: case TypeKind::Reference:
+        // Untyped, but a structure it points to is emitted so the native can cast to it.
+        if (t->element && t->element->underlying()->kind == TypeKind::Struct) emitStruct(t->element->underlying());
+        return "void*";
       case TypeKind::String: suffix = "[" + std::to_string(t->length + 1) + "]" + suffix; return "char";
       case TypeKind::WString: suffix = "[" + std::to_string(t->length + 1) + "]" + suffix; return "char16_t";
       case TypeKind::Interface: return "stc_interface";

@@ -298,6 +298,11 @@ int runRun(const BuildArgs& a) {
       return 1;
     }
   }
+  // Loose files: their programs' files (SMC_ReadCAM ...) live beside the first one.
+  if (libs.motion.config().filesDir.empty() && !a.paths.empty()) {
+    std::string d = std::filesystem::path(a.paths[0]).parent_path().string();
+    libs.motion.config().filesDir = d.empty() ? "." : d;
+  }
   vm::Controller ctl(*c.model(), c.diags());
   libs.attachTo(ctl);
   std::string err;
