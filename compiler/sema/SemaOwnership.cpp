@@ -167,7 +167,7 @@ void SemaImpl::checkStaticInstances() {
   // The attributes where they mean nothing.
   for (Symbol* s : typeSymbols_)
     if (TypeDecl* td = s->typeDecl) {
-      if (const Pragma* pr = findAttribute(td->attributes, kStaticInstance); pr && !(s->type && s->type->decl == td))
+      if (const Pragma* pr = findAttribute(td->attributes, kStaticInstance); pr && !(s->type && s->type->decl == td && s->type->isStructured()))
         diags_.warning(pr->range.begin, "{attribute 'static_instance'} applies to FUNCTION_BLOCK and STRUCT declarations only; ignored",
                        "ignored-attribute").range(pr->range);
     }
