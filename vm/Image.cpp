@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "ast/AST.h"
 #include "basic/Text.h"
 #include "sema/Layout.h"
 #include "sema/Types.h"
@@ -265,6 +266,12 @@ std::string formatReal(double v, bool single) {
   return s;
 }
 
+// An {attribute 'internal'} field of a function block or structure: the
+// binding of the instance to its native implementation, not shown or resolved.
+static bool isInternalField(const Type* owner, const sema::FieldLayout& f) {
+  return owner->kind != TypeKind::Program && f.decl && ast::hasAttribute(f.decl->attributes, "internal");
+}
+
 std::string formatValue(const uint8_t* p, const Type* t, const sema::Layout& layout) {
   t = strip(t);
   switch (t->kind) {
@@ -323,6 +330,7 @@ std::string formatValue(const uint8_t* p, const Type* t, const sema::Layout& lay
       bool first = true;
       for (const sema::FieldLayout& f : layout.of(t).fields) {
         if (!f.type) continue;   // the vptr
+        if (isInternalField(t, f)) continue;   // the native implementation's binding
         out += (first ? "" : ", ") + f.name + " := " + (f.indirect ? hex(readUnsigned(p + f.offset, 8)) : formatValue(p + f.offset, f.type, layout));
         first = false;
       }
@@ -426,12 +434,16 @@ bool resolvePath(const codegen::ImageMap& map, const sema::Layout& layout, const
     if (!f || !f->type) {
       std::vector<std::string> names;
       for (const auto& fl : layout.of(st).fields)
-        if (fl.type) names.push_back(fl.name);
+        if (fl.type && !isInternalField(st, fl)) names.push_back(fl.name);
       std::string hint = closest(segs[k].name, names);
       error = "no member named '" + segs[k].name + "' in '" + st->name + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?");
       return false;
     }
     if (f->indirect) { error = "'" + segs[k].name + "' is a VAR_IN_OUT and cannot be watched"; return false; }
+    if (isInternalField(st, *f)) {
+      error = "'" + f->name + "' is internal to '" + st->name + "': it binds the instance to its native implementation and cannot be watched, traced or written";
+      return false;
+    }
     off += f->offset;
     t = f->type;
     if (!applyIndex(segs[k])) return false;

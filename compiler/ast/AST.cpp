@@ -1,5 +1,7 @@
 #include "ast/AST.h"
 
+#include "basic/Text.h"
+
 namespace stc::ast {
 
 std::string QualifiedName::str() const {
@@ -73,6 +75,12 @@ const char* spelling(PouKind k) {
     case PouKind::PropertySet: return "SET accessor";
   }
   return "POU";
+}
+
+const Pragma* findAttribute(const std::vector<Pragma>& attrs, std::string_view name) {
+  for (const Pragma& p : attrs)
+    if (equalsIgnoreCase(p.name, name)) return &p;
+  return nullptr;
 }
 
 }  // namespace stc::ast

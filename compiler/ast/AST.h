@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "basic/SourceManager.h"
@@ -48,6 +49,10 @@ struct Pragma {
   std::string value;   // optional value
   SourceRange range;
 };
+
+// The attribute `name` (case-insensitive) among `attrs`, or null.
+const Pragma* findAttribute(const std::vector<Pragma>& attrs, std::string_view name);
+inline bool hasAttribute(const std::vector<Pragma>& attrs, std::string_view name) { return findAttribute(attrs, name) != nullptr; }
 
 // ---------------------------------------------------------------- expressions
 struct Expr : Node {

@@ -135,8 +135,14 @@ private:
   // ------------------------------------------------------------ library elements
   void libraryElement(P::LibraryElementContext* le, std::vector<Decl*>& out, PouDecl*& lastPou) {
     if (auto* t = le->dataTypeDecl()) {
+      // Attributes written before TYPE belong to the first type of the block.
+      std::vector<Pragma> before = attributesFor(t);
       for (auto* item : t->typeDeclItem())
-        if (TypeDecl* d = typeDecl(item)) out.push_back(d);
+        if (TypeDecl* d = typeDecl(item)) {
+          if (!before.empty()) d->attributes.insert(d->attributes.begin(), before.begin(), before.end());
+          before.clear();
+          out.push_back(d);
+        }
     } else if (auto* p = le->pouDecl()) {
       if (PouDecl* d = pou(p)) { out.push_back(d); lastPou = d; }
     } else if (auto* i = le->interfaceDecl()) {

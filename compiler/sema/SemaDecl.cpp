@@ -50,6 +50,7 @@ bool SemaImpl::run() {
   for (size_t i = 0; i < pous_.size(); ++i) resolveSignature(pous_[i]);
   resolveGlobals();
   for (Symbol* p : pous_) checkInheritance(p);
+  checkStaticInstances();
   for (Symbol* p : pous_) checkBody(p);
   for (auto& [c, ctx] : configs_) checkConfiguration(c, ctx);
   checkContainmentCycles();

@@ -566,6 +566,16 @@ const Type* SemaImpl::checkName(NameExpr* e, const Context& ctx, const Type* exp
   switch (s->kind) {
     case Symbol::Variable: {
       markUsed(s);
+      // An internal variable of a base FB, named inside a derived one.
+      if (isInternal(s->var) && ctx.pou && ownerOf(ctx.pou)->kind == Symbol::FunctionBlock && !internalVisible(s, ctx)) {
+        Symbol* declaring = nullptr;
+        for (Symbol* p = ownerOf(ctx.pou); p && p->pou && !declaring; p = p->pou->base)
+          if (p->pou->vars->lookupLocal(up) == s) declaring = p;
+        if (declaring) {
+          reportInternal(s->name, declaring->name, e->range, s->declRange);
+          return types_.error();
+        }
+      }
       if (!s->type && s->var) {
         Context declCtx{nullptr, outerScope_.count(s) ? outerScope_[s] : &global_};
         s->type = resolveType(s->var->type, declCtx);
@@ -681,7 +691,13 @@ const Type* SemaImpl::checkMember(MemberExpr* e, const Context& ctx, const Type*
   if (bt->kind == TypeKind::Struct || bt->kind == TypeKind::Union) {
     for (const Type* t = bt; t; t = t->base)
       for (const Member& m : t->members)
-        if (upperCase(m.name) == up) return m.type;
+        if (upperCase(m.name) == up) {
+          if (isInternal(m.decl)) {
+            reportInternal(m.name, t->name, e->member.range, m.decl->name.range);
+            return types_.error();
+          }
+          return m.type;
+        }
     std::vector<std::string> names;
     for (const Type* t = bt; t; t = t->base)
       for (const Member& m : t->members) names.push_back(m.name);
@@ -708,6 +724,13 @@ const Type* SemaImpl::checkMember(MemberExpr* e, const Context& ctx, const Type*
       // From outside an FB only its parameters are visible (programs expose everything).
       bool inside = isa<ThisExpr>(e->base) || (isa<DerefExpr>(e->base) && (isa<ThisExpr>(cast<DerefExpr>(e->base)->base) ||
                                                                             isa<SuperExpr>(cast<DerefExpr>(e->base)->base)));
+      if (isInternal(s->var) && !(inside && internalVisible(s, ctx))) {
+        std::string declaring = owner->name;
+        for (Symbol* p = owner; p && p->pou; p = p->pou->base)
+          if (p->pou->vars->lookupLocal(up) == s) { declaring = p->name; break; }
+        reportInternal(s->name, declaring, e->member.range, s->declRange);
+        return types_.error();
+      }
       VarSection sec = s->var ? s->var->section : VarSection::Var;
       if (owner->kind == Symbol::FunctionBlock && !inside &&
           !(sec == VarSection::Input || sec == VarSection::Output || sec == VarSection::InOut)) {
@@ -1063,7 +1086,8 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
     checkExpr(v, ctx, pt);
     // Arrays passed to POINTER TO parameters (CODESYS libraries do this).
     if (codesys() && pt->isPointer() && v->type && v->type->kind == TypeKind::Array) return;
-    checkConversion(pt, v, "argument");
+    if (checkConversion(pt, v, "argument") && p->type && v->type && !v->type->isError())
+      checkNoStaticCopy(p->type, v->range, "into " + std::string(p->var ? spelling(p->var->section) : "parameter") + " '" + p->name + "' of '" + callee + "'");
   };
   for (Argument& a : e->args) {
     if (a.kind == Argument::Positional) {
@@ -1426,6 +1450,10 @@ const Type* SemaImpl::checkInitializer(Expr* init, const Type* target, const Con
           diags_.error(f.name.range.begin, "no member named '" + f.name.name + "' in '" + target->name + "'", "no-member").range(f.name.range);
           continue;
         }
+        if (isInternal(found->decl)) {
+          reportInternal(found->name, target->name, f.name.range, found->decl->name.range);
+          continue;
+        }
         checkInitializer(f.value, found->type, ctx);
       }
       return target;
@@ -1438,6 +1466,10 @@ const Type* SemaImpl::checkInitializer(Expr* init, const Type* target, const Con
           diags_.error(f.name.range.begin, "no parameter named '" + f.name.name + "' in '" + target->name + "'", "no-member").range(f.name.range);
           continue;
         }
+        if (isInternal(m->var)) {
+          reportInternal(m->name, target->name, f.name.range, m->declRange);
+          continue;
+        }
         checkInitializer(f.value, m->type, ctx);
       }
       return target;
@@ -1447,7 +1479,7 @@ const Type* SemaImpl::checkInitializer(Expr* init, const Type* target, const Con
     return types_.error();
   }
   if (!init->type) checkExpr(init, ctx, target);
-  checkConversion(target, init, "initializer");
+  if (checkConversion(target, init, "initializer") && init->type && !init->type->isError()) checkNoStaticCopy(target, init->range, "in an initializer");
   return target;
 }
 

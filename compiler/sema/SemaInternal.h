@@ -131,6 +131,18 @@ public:
   void checkDivisor(BinaryExpr* e, const Context& ctx);
   void checkUnused();
 
+  // ---------------------------------------------------------------- SemaOwnership.cpp
+  // The {attribute 'static_instance'} type that `t` is or holds by value, or null.
+  const Type* staticInstanceIn(const Type* t);
+  std::string staticInstanceReason(const Type* t, const Type* staticType);
+  // Reports copying a value of `t` (`what`: "in an assignment", ...) when it holds a static instance.
+  bool checkNoStaticCopy(const Type* t, SourceRange at, const std::string& what);
+  void checkStaticInstances();
+  static bool isInternal(const VarDecl* v);
+  // Whether an {attribute 'internal'} variable may be named here: only by the block declaring it.
+  bool internalVisible(Symbol* var, const Context& ctx);
+  void reportInternal(const std::string& field, const std::string& owner, SourceRange at, SourceRange declared);
+
   // ---------------------------------------------------------------- ConstEval.cpp
   std::optional<ConstValue> evalConst(Expr* e, const Context& ctx);
   std::optional<int64_t> evalInt(Expr* e, const Context& ctx, const char* what);
@@ -168,6 +180,7 @@ public:
   bool allowUnsigned_ = false;                // evalInt may return ULINT bit patterns           // constants being evaluated (cycle reports)
   bool readingLhs_ = false;                   // checking an assignment target (properties need SET, not GET)
   Symbol* currentCaller_ = nullptr;
+  std::map<const Type*, const Type*> staticIn_;   // staticInstanceIn memo
 };
 
 std::string typeName(const Type* t);

@@ -127,7 +127,8 @@ void SemaImpl::checkStmt(Stmt* s, const Context& ctx, BodyState& st) {
       }
       checkExpr(a->rhs, ctx, lt);
       checkAssignTarget(a->lhs, ctx, &st);
-      if (!lt->isError()) checkConversion(valueType(lt), a->rhs, "assignment");
+      if (!lt->isError() && checkConversion(valueType(lt), a->rhs, "assignment") && a->rhs->type && !a->rhs->type->isError())
+        checkNoStaticCopy(valueType(lt), SourceRange(a->lhs->range.begin, a->rhs->range.end), "in an assignment");
       return;
     }
     case Stmt::ExprS: {

@@ -177,6 +177,14 @@ equals = "Running"'
 at = "1ms"
 axis = "Axis9"
 kind = "drive_error"'
+  # {attribute 'internal'} fields (the kernel handles) cannot be written or traced.
+  scenario p internal_set 'cycles = 10
+[[set]]
+at = "1ms"
+var = "MAIN.power.__handle"
+value = "0"'
+  scenario p internal_trace 'cycles = 10
+trace = ["Axis1.__stcAxis"]'
   run 1 "$TMP/p"
   has "FAIL p/syntax"
   grep -qE "^  scenarios/syntax.toml:[0-9]+:[0-9]+: error: " "$TMP/out" || fail "no file:line:col for a TOML syntax error"
@@ -193,7 +201,11 @@ kind = "drive_error"'
   has "scenarios/no_length.toml: error: the scenario needs duration"
   has "FAIL p/no_axis"
   has "no [[axis]] named 'Axis9'"
-  has "0 passed, 7 failed"
+  has "FAIL p/internal_set"
+  has "'__handle' is internal to 'MC_Power'"
+  has "FAIL p/internal_trace"
+  has "'__stcAxis' is internal to 'AXIS_REF_SM3'"
+  has "0 passed, 9 failed"
   # Not a project directory: exit 2.
   run 2 "$TMP/p/src"
   has "is not a project directory"
