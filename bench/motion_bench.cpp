@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "stdlib-motion/core/Cam.h"
 #include "stdlib-motion/core/Kernel.h"
 #include "stdlib-motion/core/Trajectory.h"
 
@@ -52,6 +53,40 @@ void BM_PlanJerkRestToRest(benchmark::State& st) {
   }
 }
 BENCHMARK(BM_PlanJerkRestToRest);
+
+// Cam lookup (y, y', y'') at random master positions vs the number of points:
+// XYVA and 2-D tables search their segment (O(log n)), 1-D tables index it (O(1)).
+static void camLookup(benchmark::State& st, int kind) {
+  const int n = static_cast<int>(st.range(0));
+  stc::motion::Cam cam;
+  std::string err;
+  std::vector<stc::motion::CamXYVA> xyva;
+  std::vector<std::array<double, 2>> xy;
+  std::vector<double> ys;
+  for (int i = 0; i < n; ++i) {
+    const double x = 360.0 * i / (n - 1);
+    xyva.push_back({x, std::sin(x / 57.3), std::cos(x / 57.3) / 57.3, 0});
+    xy.push_back({x, std::sin(x / 57.3)});
+    ys.push_back(std::sin(x / 57.3));
+  }
+  if (kind == 0) stc::motion::Cam::xyva(xyva, {}, cam, err);
+  else if (kind == 1) stc::motion::Cam::table2D(xy, {}, cam, err);
+  else stc::motion::Cam::table1D(0, 360, ys, {}, cam, err);
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> d(0, 360);
+  std::vector<double> q(4096);
+  for (double& v : q) v = d(rng);
+  size_t i = 0;
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(cam.at(q[i++ & 4095]));
+  }
+}
+static void BM_CamLookupXYVA(benchmark::State& st) { camLookup(st, 0); }
+static void BM_CamLookupTable2D(benchmark::State& st) { camLookup(st, 1); }
+static void BM_CamLookupTable1D(benchmark::State& st) { camLookup(st, 2); }
+BENCHMARK(BM_CamLookupXYVA)->RangeMultiplier(16)->Range(16, 65536);
+BENCHMARK(BM_CamLookupTable2D)->RangeMultiplier(16)->Range(16, 65536);
+BENCHMARK(BM_CamLookupTable1D)->RangeMultiplier(16)->Range(16, 65536);
 
 // Plans `plan(case, profile)` over 4096 pre-generated random cases, round robin.
 template <class Plan>

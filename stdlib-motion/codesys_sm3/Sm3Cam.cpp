@@ -186,8 +186,13 @@ void MC_CamIn(sm3::MC_CamIn* self) {
   Axis* master = slave ? bindMaster(self->Master, c) : nullptr;
   if (refuse(self, master ? slave : nullptr) || rewired(self, *slave, c)) return;
   FbSlot& fb = slotOf(self, FbKind::CamIn);
+  const bool edge = self->Execute && !fb.execute;
+  if (!edge) {   // without an edge the call only publishes (and may clear) the outputs
+    kernel().beginExecute(fb, self->Execute, c);
+    return fb.sync();
+  }
   CamInInputs in;
-  if (self->Execute && !fb.execute) {   // the inputs are read at the edge only
+  {   // the inputs are read at the edge only
     in.sel = selectionOf(self->CamTableID);
     in.masterOffset = self->MasterOffset;
     in.slaveOffset = self->SlaveOffset;
@@ -203,15 +208,17 @@ void MC_CamIn(sm3::MC_CamIn* self) {
     in.publishTappets = &publishTappets;
   }
   callCamIn(kernel(), fb, *master, *slave, self->Execute, in, c);
-  mirrorCall(*slave);
+  mirrorCall(*slave);   // an edge may change the axis state
 }
 
 void MC_CamOut(sm3::MC_CamOut* self) {
   CallCtx c = callContext();
   Axis* slave = bind(self->Slave, c);
   if (refuse(self, slave) || rewired(self, *slave, c)) return;
-  callCouplingOut(kernel(), slotOf(self, FbKind::Other), *slave, self->Execute, true, c);
-  mirrorCall(*slave);
+  FbSlot& fb = slotOf(self, FbKind::Other);
+  const bool edge = self->Execute && !fb.execute;
+  callCouplingOut(kernel(), fb, *slave, self->Execute, true, c);
+  if (edge) mirrorCall(*slave);
 }
 
 // SMC_CAMBounds(_Pos): the extremes of an XYVA cam coupled absolutely, for a master moving

@@ -34,13 +34,7 @@ Axis& Kernel::addAxis(const AxisConfig& cfg) {
   return *axes_.back();
 }
 
-bool Kernel::claim(Axis& ax, const CallCtx& c) {
-  if (ax.task == UINT32_MAX) ax.task = c.task;
-  return ax.task == c.task;
-}
-
-FbSlot& Kernel::slot(uint64_t& handle, void* instance, FbKind kind, PublishFn publish) {
-  if (handle >= 1 && handle <= slots_.size() && slots_[handle - 1]->instance == instance) return *slots_[handle - 1];
+FbSlot& Kernel::newSlot(uint64_t& handle, void* instance, FbKind kind, PublishFn publish) {
   slots_.push_back(std::make_unique<FbSlot>());
   FbSlot& s = *slots_.back();
   s.kind = kind;

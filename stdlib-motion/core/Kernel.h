@@ -47,10 +47,17 @@ public:
   Axis* axis(uint32_t index) { return index < axes_.size() ? axes_[index].get() : nullptr; }
   size_t axisCount() const { return axes_.size(); }
   // Binds `axis` to the calling task if it has no owner yet; false if another task owns it.
-  bool claim(Axis& axis, const CallCtx& c);
+  bool claim(Axis& axis, const CallCtx& c) {   // inline: every FB call claims its axis
+    if (axis.task == UINT32_MAX) axis.task = c.task;
+    return axis.task == c.task;
+  }
 
   // ---- FB slots: `handle` lives in the ST instance (0 = none yet).
-  FbSlot& slot(uint64_t& handle, void* instance, FbKind kind, PublishFn publish);
+  FbSlot& slot(uint64_t& handle, void* instance, FbKind kind, PublishFn publish) {   // inline fast path: a known instance
+    if (handle >= 1 && handle <= slots_.size() && slots_[handle - 1]->instance == instance) return *slots_[handle - 1];
+    return newSlot(handle, instance, kind, publish);
+  }
+  FbSlot& newSlot(uint64_t& handle, void* instance, FbKind kind, PublishFn publish);
 
   // An FB (by its handle) called with another axis than the one its command runs on:
   // while Busy it reports error 32 and its command ends (the first axis, left without
