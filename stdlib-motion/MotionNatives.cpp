@@ -13,16 +13,12 @@
 
 namespace stc::motion {
 
-namespace {
-const char kSessionKey = 0;
-}  // namespace
-
 MotionLibrary::MotionLibrary(MotionConfig cfg) : cfg_(std::move(cfg)) {
   registerSm3Natives(*this);
   registerMotionTestNatives(*this);
 }
 
-const void* MotionLibrary::sessionKey() const { return &kSessionKey; }
+const void* MotionLibrary::sessionKey() const { return &kMotionSessionKey; }
 std::unique_ptr<vm::NativeSession> MotionLibrary::newSession() const { return std::make_unique<MotionSession>(*this, cfg_); }
 
 bool MotionLibrary::readProject(const std::string& dir, const std::vector<std::string>& libraries, std::string& error) {
@@ -35,7 +31,6 @@ MotionSession::MotionSession(const MotionLibrary& lib, const MotionConfig& cfg) 
   kernel.profile = cfg_.profile;
 }
 
-const void* MotionSession::key() { return &kSessionKey; }
 void MotionSession::noSession() {
   throw std::logic_error("a motion native was called outside a controller with the motion library");
 }

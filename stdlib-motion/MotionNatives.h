@@ -94,6 +94,9 @@ private:
 
 struct IoRuntime;   // ProjectIo.cpp
 
+// The key of the motion library's sessions (an inline variable: one address program-wide).
+inline constexpr char kMotionSessionKey = 0;
+
 // One controller's motion: the kernel, its axes and the ST variables they are bound to.
 class MotionSession : public vm::NativeSession {
 public:
@@ -106,7 +109,7 @@ public:
     if (auto* s = static_cast<MotionSession*>(vm::currentSession(key()))) return *s;
     noSession();
   }
-  static const void* key();
+  static const void* key() { return &kMotionSessionKey; }
 
   Kernel kernel;
   CommandTable commands;   // function-style commands (motion_test, Hollysys)

@@ -16,9 +16,11 @@ int64_t __stc_budget = 1'000'000;
 }
 
 namespace stc::vm {
-namespace {
-
+namespace detail {
 thread_local Scheduler* tScheduler = nullptr;
+}
+namespace {
+using detail::tScheduler;
 
 int64_t monotonicNs() {
   timespec ts;
@@ -107,11 +109,6 @@ Time Scheduler::baseTick() const {
 const TaskConfig& Scheduler::task(uint32_t i) const { return tasks_.at(i)->cfg; }
 size_t Scheduler::taskCount() const { return tasks_.size(); }
 bool Scheduler::faulted(uint32_t i) const { return tasks_.at(i)->state == State::Faulted; }
-Scheduler* Scheduler::current() { return tScheduler; }
-
-uint64_t Scheduler::currentCycle() const {
-  return curTask_ < tasks_.size() ? tasks_[curTask_]->cycle : 0;
-}
 
 void Scheduler::prepare() {
   if (prepared_) return;
@@ -159,7 +156,7 @@ __attribute__((always_inline)) inline void Scheduler::runSlot(Task& t, bool edge
   TaskStats& st = stats_[t.index];
   if (opts_.measure) slotWall_ = monotonicNs();
   curTask_ = t.index;
-  ++t.cycle;
+  curCycle_ = ++t.cycle;
   ++st.slots;
   if (before_) before_(t.index);
 
@@ -270,6 +267,7 @@ void Scheduler::endSlot(Task& t) {
   }
   if (after_) after_(t.index);
   curTask_ = UINT32_MAX;
+  curCycle_ = 0;
 
   if (opts_.measure) {
     TaskStats& st = stats_[t.index];

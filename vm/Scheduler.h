@@ -144,9 +144,9 @@ public:
 
   // From code running inside a task (runtime functions, natives, hooks).
   // The scheduler running on this thread, else null.
-  static Scheduler* current();
+  static Scheduler* current();   // inline below: natives ask on every call
   uint32_t currentTask() const { return curTask_; }   // UINT32_MAX outside a slot
-  uint64_t currentCycle() const;
+  uint64_t currentCycle() const { return curCycle_; } // the current task's cycle, 0 outside a slot
   // The budget ran out: remembers `site` for the watchdog report; on a fiber
   // the activation is suspended until the task's next due slot.  Refills
   // __stc_budget with the slice.
@@ -196,6 +196,7 @@ private:
   bool prepared_ = false;
   Time base_ = 0;
   Time now_ = 0;
+  uint64_t curCycle_ = 0;
   Time next_ = 0;
   Time fastest_ = 0;                 // the smallest cyclic interval
   int64_t wallStart_ = 0;            // realtime: CLOCK_MONOTONIC ns of T = 0
@@ -205,5 +206,10 @@ private:
   std::jmp_buf directExit_;          // fault() from a direct task lands in runTicks
   std::atomic<bool> stop_{false};
 };
+
+namespace detail {
+extern thread_local Scheduler* tScheduler;   // set while a scheduler runs on this thread
+}
+inline Scheduler* Scheduler::current() { return detail::tScheduler; }
 
 }  // namespace stc::vm
