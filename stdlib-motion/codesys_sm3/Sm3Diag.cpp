@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "stdlib-motion/codesys_sm3/Sm3ErrorText.h"
 #include "stdlib-motion/codesys_sm3/Sm3Face.h"
 #include "stdlib-motion/core/Diag.h"
 
@@ -209,7 +210,7 @@ bool SMC_ClearFBError(void* pDrive) {
 }
 
 void SMC_ErrorString(char* result, int16_t errorId) {
-  const std::string s = diag::errorString(static_cast<uint16_t>(errorId));
+  const std::string s = errorString(static_cast<uint16_t>(errorId));
   const size_t n = std::min<size_t>(255, s.size());
   std::memcpy(result, s.data(), n);
   result[n] = 0;

@@ -59,10 +59,7 @@ ComOut checkCommunication(const Axis& ax, bool enable);
 struct FbErrorOut : EnableOut { FbErrorRecord record; };
 FbErrorOut readFbError(const Axis& ax, bool enable);
 bool clearFbError(Axis& ax);              // false while the axis is in errorstop (the record stays)
-// "<SMC_ERROR name>: <description>" from the manuals' table; null for an unknown number.
-const char* errorName(uint16_t id);
-const char* errorDescription(uint16_t id);
-std::string errorString(uint16_t id);
+// (SMC_ErrorString's texts are the SM3 face's: codesys_sm3/Sm3ErrorText.h.)
 
 // ---- SMC_AxisDiagnosticLog
 enum class LogMode : uint8_t { Continuous = 0, AtClose = 1 };

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "MotionSim.h"
+#include "stdlib-motion/codesys_sm3/Sm3ErrorText.h"
 #include "stdlib-motion/core/Diag.h"
 
 using namespace stc::motion;
@@ -414,10 +415,10 @@ TEST(MotionDiag, FbErrorRecordAndErrorString) {
   EXPECT_TRUE(clearFbError(*s.ax));
   EXPECT_FALSE(readFbError(*s.ax, true).record.set);
   EXPECT_FALSE(readFbError(*s.ax, false).busy);
-  EXPECT_EQ(errorString(400), "SMC_TP_TRIGGEROCCUPIED: trigger already in use/active");
-  EXPECT_EQ(errorString(0), "SMC_NO_ERROR: no error");
-  EXPECT_EQ(errorString(9999), "unknown SMC_ERROR 9999");
-  EXPECT_STREQ(errorName(2101), "SMC_ADL_BUFFER_OVERRUN");
+  EXPECT_EQ(sm3face::errorString(400), "SMC_TP_TRIGGEROCCUPIED: trigger already in use/active");
+  EXPECT_EQ(sm3face::errorString(0), "SMC_NO_ERROR: no error");
+  EXPECT_EQ(sm3face::errorString(9999), "unknown SMC_ERROR 9999");
+  EXPECT_STREQ(sm3face::errorName(2101), "SMC_ADL_BUFFER_OVERRUN");
 }
 
 // ---------------------------------------------------------------- diagnostic log

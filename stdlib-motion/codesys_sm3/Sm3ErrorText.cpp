@@ -1,9 +1,9 @@
 // The SMC_ERROR names and descriptions for SMC_ErrorString: spec/amc1600c.md appendix 3,
 // else spec/leadshine_pmc600.md A-1.  Generated once from the manuals' tables; names as
-// sm3_types.st spells them.
-#include "stdlib-motion/core/Diag.h"
+// sm3_types.st spells them.  The SM3 face's texts: the core has numbers only.
+#include "stdlib-motion/codesys_sm3/Sm3ErrorText.h"
 
-namespace stc::motion::diag {
+namespace stc::motion::sm3face {
 
 namespace {
 struct ErrorText { uint16_t id; const char* name; const char* text; };
@@ -235,4 +235,4 @@ std::string errorString(uint16_t id) {
   return *e->text ? std::string(e->name) + ": " + e->text : std::string(e->name);
 }
 
-}  // namespace stc::motion::diag
+}  // namespace stc::motion::sm3face
