@@ -35,9 +35,9 @@ void MotionSession::noSession() {
   throw std::logic_error("a motion native was called outside a controller with the motion library");
 }
 
-void MotionSession::bindVar(const Axis& ax, void* var, void (*mirrorFn)(const Axis&, void*)) {
+void MotionSession::bindVar(Axis& ax, void* var, void (*mirrorFn)(const Axis&, void*)) {
   if (axisVars.size() <= ax.index()) axisVars.resize(ax.index() + 1);
-  axisVars[ax.index()] = AxisVar{var, mirrorFn};
+  axisVars[ax.index()] = AxisVar{var, mirrorFn, &ax, ax.task};
 }
 
 // Binds every configured axis to its AXIS_REF variable and task.
@@ -97,8 +97,8 @@ bool MotionSession::start(const vm::StartCtx& sc, std::string& error) {
 
 void MotionSession::cycle(const vm::HookCtx& c) {
   kernel.cycle(c.task, c.now, c.interval, c.cycle);
-  for (size_t i = 0; i < axisVars.size(); ++i)
-    if (Axis* ax = kernel.axis(static_cast<uint32_t>(i)); ax && ax->task == c.task) mirror(*ax);
+  for (const AxisVar& v : axisVars)
+    if (v.axis && v.task == c.task && v.mirror) v.mirror(*v.axis, v.var);
   // The devices read the axes stepped above; the programs see them in their next cycle.
   cycleIo(*io_, c.now);
 }

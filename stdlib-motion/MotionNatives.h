@@ -117,9 +117,19 @@ public:
   struct AxisVar {
     void* var = nullptr;
     void (*mirror)(const Axis& ax, void* var) = nullptr;
+    // A copy of the axis and its owning task, so the per-call binding check reads
+    // this small array instead of the (large) Axis object.
+    Axis* axis = nullptr;
+    uint32_t task = UINT32_MAX;
   };
   std::vector<AxisVar> axisVars;
-  void bindVar(const Axis& ax, void* var, void (*mirror)(const Axis&, void*));
+  void bindVar(Axis& ax, void* var, void (*mirror)(const Axis&, void*));
+  // The axis bound to `var` under the binding `index` when the calling task owns it, else null.
+  Axis* boundAxis(uint64_t index, const void* var, uint32_t task) const {
+    if (index >= axisVars.size()) return nullptr;
+    const AxisVar& v = axisVars[index];
+    return v.var == var && v.task == task ? v.axis : nullptr;
+  }
   void mirror(const Axis& ax) {
     if (ax.index() < axisVars.size() && axisVars[ax.index()].mirror) axisVars[ax.index()].mirror(ax, axisVars[ax.index()].var);
   }

@@ -105,14 +105,15 @@ void mirrorCall(Axis& ax) {
 Axis* bindMaster(sm3::AXIS_REF_SM3* ref, const CallCtx& c) {
   if (!ref) return nullptr;
   MotionSession& s = MotionSession::current();
-  Axis* ax = ref->__stcAxis ? s.kernel.axis(ref->__stcAxis - 1) : nullptr;
-  if (ax && ax->index() < s.axisVars.size() && s.axisVars[ax->index()].var == ref) return ax;
+  const uint64_t i = ref->__stcAxis - 1u;
+  if (i < s.axisVars.size() && s.axisVars[i].var == ref) return s.axisVars[i].axis;
   return bind(ref, c);   // first use: bound (and owned) here
 }
 
 Axis* bind(sm3::AXIS_REF_SM3* ref, const CallCtx& c) {
   if (!ref) return nullptr;
   MotionSession& s = MotionSession::current();
+  if (Axis* fast = s.boundAxis(ref->__stcAxis - 1, ref, c.task)) return fast;
   Kernel& k = s.kernel;
   Axis* ax = ref->__stcAxis ? k.axis(ref->__stcAxis - 1) : nullptr;
   // The binding is only trusted when the axis is bound to this very variable.
@@ -122,6 +123,7 @@ Axis* bind(sm3::AXIS_REF_SM3* ref, const CallCtx& c) {
     boundVar(ref, *ax);
   }
   if (!k.claim(*ax, c)) return nullptr;
+  s.axisVars[ax->index()].task = ax->task;
   return ax;
 }
 
