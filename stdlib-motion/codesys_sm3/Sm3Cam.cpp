@@ -223,8 +223,10 @@ void MC_CamOut(sm3::MC_CamOut* self) {
 
 // SMC_CAMBounds(_Pos): the extremes of an XYVA cam coupled absolutely, for a master moving
 // forwards at 0..dMasterVelMax with |acceleration| <= dMasterAccMax.
-template <class T>
-void camBounds(T* self, bool withDynamics) {
+// The common start of the bExecute blocks that take an XYVA cam (640 for tables): at the
+// rising edge, `body` gets the cam and finishes the block (Done in the same call).
+template <class T, class Body>
+void xyvaAtEdge(T* self, Body body) {
   CallCtx c = callContext();
   Kernel& k = kernel();
   FbSlot& fb = slotOf(self, FbKind::Other);
@@ -232,33 +234,41 @@ void camBounds(T* self, bool withDynamics) {
   std::shared_ptr<const Cam> cam;
   if (Error e = readCamRef(self->CAM, cam); e != Error::None) return k.fail(fb, e, c);
   if (cam->kind() != CamKind::XYVA) return k.fail(fb, Error::CbNotImplemented, c);
-  const double Vm = self->dMasterVelMax, Am = self->dMasterAccMax, Ms = self->dMasterScaling, Ss = self->dSlaveScaling;
-  if (!std::isfinite(Vm) || !std::isfinite(Am) || !std::isfinite(Ms) || !std::isfinite(Ss) || Vm < 0 || Am < 0)
-    return k.fail(fb, Error::CbNotImplemented, c);
-  const CamExtremes& e = cam->extremes();
-  auto range = [&](double lo, double hi, double f, double& mn, double& mx) {
-    mn = std::min(lo * f, hi * f);
-    mx = std::max(lo * f, hi * f);
-  };
-  range(e.yMin, e.yMax, Ss, self->dMinPos, self->dMaxPos);
-  if constexpr (requires { self->dMaxVel; }) {
-    if (withDynamics) {
-      range(std::min(e.dyMin, 0.0), std::max(e.dyMax, 0.0), Ss * Ms * Vm, self->dMinVel, self->dMaxVel);
-      // a = Ss·(y''·(Ms·vm)² + y'·Ms·am): sampled along the cam (64 points per segment).
-      double aMin = 0, aMax = 0;
-      const size_t n = cam->segments() * 64;
-      for (size_t i = 0; i <= n; ++i) {
-        const CamSample s = cam->at(cam->xStart() + cam->length() * static_cast<double>(i) / static_cast<double>(n));
-        const double curv = Ss * s.ddy * Ms * Ms * Vm * Vm, lin = std::fabs(Ss * s.dy * Ms * Am);
-        aMax = std::max(aMax, std::max(curv, 0.0) + lin);
-        aMin = std::min(aMin, std::min(curv, 0.0) - lin);
-      }
-      self->dMaxAccDec = aMax;
-      self->dMinAccDec = aMin;
-    }
-  }
+  if (Error e = body(*cam); e != Error::None) return k.fail(fb, e, c);
   k.finish(fb, &c, c.cycle, true, false, Error::None);
   fb.sync();
+}
+
+template <class T>
+void camBounds(T* self, bool withDynamics) {
+  xyvaAtEdge(self, [&](const Cam& cam) {
+    const double Vm = self->dMasterVelMax, Am = self->dMasterAccMax, Ms = self->dMasterScaling, Ss = self->dSlaveScaling;
+    if (!std::isfinite(Vm) || !std::isfinite(Am) || !std::isfinite(Ms) || !std::isfinite(Ss) || Vm < 0 || Am < 0)
+      return Error::CbNotImplemented;
+    const CamExtremes& e = cam.extremes();
+    auto range = [&](double lo, double hi, double f, double& mn, double& mx) {
+      mn = std::min(lo * f, hi * f);
+      mx = std::max(lo * f, hi * f);
+    };
+    range(e.yMin, e.yMax, Ss, self->dMinPos, self->dMaxPos);
+    if constexpr (requires { self->dMaxVel; }) {
+      if (withDynamics) {
+        range(std::min(e.dyMin, 0.0), std::max(e.dyMax, 0.0), Ss * Ms * Vm, self->dMinVel, self->dMaxVel);
+        // a = Ss·(y''·(Ms·vm)² + y'·Ms·am): sampled along the cam (64 points per segment).
+        double aMin = 0, aMax = 0;
+        const size_t n = cam.segments() * 64;
+        for (size_t i = 0; i <= n; ++i) {
+          const CamSample s = cam.at(cam.xStart() + cam.length() * static_cast<double>(i) / static_cast<double>(n));
+          const double curv = Ss * s.ddy * Ms * Ms * Vm * Vm, lin = std::fabs(Ss * s.dy * Ms * Am);
+          aMax = std::max(aMax, std::max(curv, 0.0) + lin);
+          aMin = std::min(aMin, std::min(curv, 0.0) - lin);
+        }
+        self->dMaxAccDec = aMax;
+        self->dMinAccDec = aMin;
+      }
+    }
+    return Error::None;
+  });
 }
 void SMC_CAMBounds(sm3::SMC_CAMBounds* self) { camBounds(self, true); }
 void SMC_CAMBounds_Pos(sm3::SMC_CAMBounds_Pos* self) { camBounds(self, false); }
@@ -449,21 +459,14 @@ void SMC_ReadCAM(sm3::SMC_ReadCAM* self) {
 }
 
 void SMC_WriteCAM(sm3::SMC_WriteCAM* self) {
-  CallCtx c = callContext();
-  Kernel& k = kernel();
-  FbSlot& fb = slotOf(self, FbKind::Other);
-  if (!k.beginExecute(fb, self->bExecute, c)) return fb.sync();
-  std::shared_ptr<const Cam> cam;
-  if (Error e = readCamRef(self->CAM, cam); e != Error::None) return k.fail(fb, e, c);
-  if (cam->kind() != CamKind::XYVA) return k.fail(fb, Error::CbNotImplemented, c);
-  std::string path;
-  if (!camFile(self->sFileName, path)) return k.fail(fb, Error::RcamFileDoesntExist, c);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << writeCamText(*cam, std::string(self->CAM->strCAMName, strnlen(self->CAM->strCAMName, sizeof self->CAM->strCAMName)));
-  out.close();
-  if (!out) return k.fail(fb, Error::RcamFileDoesntExist, c);
-  k.finish(fb, &c, c.cycle, true, false, Error::None);
-  fb.sync();
+  xyvaAtEdge(self, [&](const Cam& cam) {
+    std::string path;
+    if (!camFile(self->sFileName, path)) return Error::RcamFileDoesntExist;
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << writeCamText(cam, std::string(self->CAM->strCAMName, strnlen(self->CAM->strCAMName, sizeof self->CAM->strCAMName)));
+    out.close();
+    return out ? Error::None : Error::RcamFileDoesntExist;
+  });
 }
 
 }  // namespace
