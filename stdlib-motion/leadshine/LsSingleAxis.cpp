@@ -1,8 +1,8 @@
 // The Leadshine face: binds the native LS_ blocks of ls_single_axis.st to
-// the motion core (core/LeadshineMoves.h).  They take AXIS_REF_SM3, so they
+// the Leadshine semantics (leadshine/LsMoves.h, over core/JumpTrapezoid.h).  They take AXIS_REF_SM3, so they
 // share the SoftMotion face's binding and mirror (Sm3Face.h).
 #include "stdlib-motion/codesys_sm3/Sm3Face.h"
-#include "stdlib-motion/core/LeadshineMoves.h"
+#include "stdlib-motion/leadshine/LsMoves.h"
 
 using namespace stc::motion;
 using namespace stc::motion::sm3face;

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "MotionSim.h"
-#include "stdlib-motion/core/LeadshineMoves.h"
+#include "stdlib-motion/leadshine/LsMoves.h"
 
 using namespace stc::motion;
 using namespace stc::motion::leadshine;
