@@ -147,6 +147,8 @@ public:
   // MC_Reset: clears the error and pulses the drive's fault reset.
   void clearError();
   void setState(AxisState s) { state_ = s; }
+  // An encoder axis has no set point of its own: its set state is its measurement.
+  void trackActual() { set_ = Kinematic{actPosition(), actVelocity(), 0}; }
   bool atRest() const { return set_.v == 0 && set_.a == 0 && mv_.kind == Movement::Kind::None; }
 
   // ---- movements (positions unwrapped), started at nowNs (+frac seconds)

@@ -196,8 +196,16 @@ void Drive::cycle(double setPos, double setVel, double setAcc, double dt, int64_
   if (communication_) stepStateMachine();
   prevPos_ = actPos_;
   if (cfg_.kind == AxisKind::Encoder) {
+    // Whole increments, as a real encoder counts: the position is count / increments per
+    // unit, so it does not drift by rounding (100 mm/s at 1000 inc/mm is 300.0 at 3 s).
+    const double ipu = cfg_.incrementsPerUnit > 0 ? cfg_.incrementsPerUnit : 1;
+    if (actPos_ != encLastPos_) encCount_ = std::round(actPos_ * ipu);   // set from outside (MC_SetPosition ...)
     actVel_ = cfg_.encoderVelocity;
-    actPos_ += actVel_ * dt;
+    encFrac_ += actVel_ * dt * ipu;
+    const double whole = std::trunc(encFrac_ + std::copysign(1e-9, encFrac_));   // 99.99999999999999 is 100
+    encFrac_ -= whole;
+    encCount_ += whole;
+    actPos_ = encLastPos_ = encCount_ / ipu;
     actTorque_ = 0;
     return;
   }

@@ -132,6 +132,7 @@ private:
   bool communication_ = true;
   bool forcedLimitPos_ = false, forcedLimitNeg_ = false;
   double actPos_ = 0, actVel_ = 0, actTorque_ = 0, prevPos_ = 0, targetTorque_ = 0;
+  double encCount_ = 0, encFrac_ = 0, encLastPos_ = 0;   // encoder axes: whole increments, carry
   double lagSetPos_ = 0, lagSetVel_ = 0;   // the set point of the previous cycle (Lag model)
   double shift_ = 0;                 // sum of the coordinate shifts
   int8_t modesOfOperation_ = 8;      // 0x6060: cyclic synchronous position

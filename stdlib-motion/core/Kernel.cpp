@@ -633,6 +633,7 @@ void Kernel::cycle(uint32_t task, int64_t nowNs, int64_t intervalNs, uint64_t cy
     if (a->task == task && a->config().drive.kind == AxisKind::Encoder) {
       stepped_[a->index()] = 1;
       stepAxis(*a, nowNs, dt, cycle);
+      a->trackActual();
     }
   // Then masters before their slaves (Axis::master), whatever order the axes were added in;
   // a master of another task is stepped by that task.
