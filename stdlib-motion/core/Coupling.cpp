@@ -74,7 +74,14 @@ public:
       FbSlot* succ = ax.queue.front();
       ax.queue.erase(ax.queue.begin());
       ax.controller = nullptr;
+      const bool endOfProfile = fb.out.endOfProfile;
       k.finish(fb, nullptr, cycle, false, true, Error::None);
+      if (endOfProfile) {   // the boundary's pulse is still shown for one cycle, with CommandAborted
+        fb.out.endOfProfile = true;
+        fb.endOfProfileCycle = cycle;
+        fb.sync();
+        if (std::find(ax.pendingClear.begin(), ax.pendingClear.end(), &fb) == ax.pendingClear.end()) ax.pendingClear.push_back(&fb);
+      }
       k.startCommand(*succ, ax, nowNs, 0);
       succ->out.active = true;
       succ->sync();
@@ -265,10 +272,10 @@ protected:
       ramping = false;
       if (in.startMode >= CamStartMode::RampIn && comp0 != 0) {
         const Limits lim{in.velocityDiff, in.acceleration, in.deceleration, in.jerk};
-        const double dv = std::clamp(prev.v - t0.k.v, -in.velocityDiff, in.velocityDiff);
-        if (planPosition(Kinematic{comp0, dv, 0}, 0, 0, lim, comp) != PlanStatus::Ok &&
-            planPosition(Kinematic{comp0, 0, 0}, 0, 0, lim, comp) != PlanStatus::Ok)
-          return Error::CiRampInNeedsVelAcc;
+        // From the slave's own velocity difference, so its velocity never jumps: a difference
+        // beyond VelocityDiff is first brought within it at Deceleration.
+        const double dv = prev.v - t0.k.v;
+        if (planPosition(Kinematic{comp0, dv, 0}, 0, 0, lim, comp) != PlanStatus::Ok) return Error::CiRampInNeedsVelAcc;
         ramping = comp.duration() > 0;
         tComp = 0;
       }

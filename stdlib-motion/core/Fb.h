@@ -86,6 +86,7 @@ public:
   uint64_t lastCallCycle = 0;       // task cycle of the latest call
   uint64_t callSeq = 0;             // global call order (detects successor-before-predecessor)
   uint64_t terminalCycle = 0;       // cycle in which Done/Error/CommandAborted rose with Execute low
+  uint64_t endOfProfileCycle = 0;   // the cycle an EndOfProfile pulse was raised at a handover
   bool clearPending = false;
   // A command of a function-style face (Commands.h): the kernel owns it; it need not be
   // called in every cycle and its outputs are kept until the slot is reused.

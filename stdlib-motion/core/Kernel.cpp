@@ -685,15 +685,27 @@ void Kernel::stepAxis(Axis& ax, int64_t nowNs, double dt, uint64_t cycle) {
   if (!ax.pendingClear.empty()) {
     size_t keep = 0;
     for (FbSlot* fb : ax.pendingClear) {
-      if (!fb->clearPending) continue;
-      if (cycle > fb->terminalCycle && !fb->execute && !fb->out.busy) {
-        fb->out.done = fb->out.error = fb->out.aborted = false;
-        fb->out.errorId = Error::None;
-        fb->clearPending = false;
-        fb->sync();
-      } else {
-        ax.pendingClear[keep++] = fb;
+      bool again = false;
+      // An EndOfProfile pulse raised at a buffered handover (the coupling no longer steps it).
+      if (fb->out.endOfProfile && !fb->out.busy) {
+        if (cycle > fb->endOfProfileCycle) {
+          fb->out.endOfProfile = false;
+          fb->sync();
+        } else {
+          again = true;
+        }
       }
+      if (fb->clearPending) {
+        if (cycle > fb->terminalCycle && !fb->execute && !fb->out.busy) {
+          fb->out.done = fb->out.error = fb->out.aborted = false;
+          fb->out.errorId = Error::None;
+          fb->clearPending = false;
+          fb->sync();
+        } else {
+          again = true;
+        }
+      }
+      if (again) ax.pendingClear[keep++] = fb;
     }
     ax.pendingClear.resize(keep);
   }
