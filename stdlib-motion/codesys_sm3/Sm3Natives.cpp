@@ -140,6 +140,13 @@ void MC_Power(sm3::MC_Power* self) {
   const bool changed = fb.execute != static_cast<bool>(self->Enable) || ax->power != &fb ||
                        (self->Enable && (ax->powerRequested() != static_cast<bool>(self->bRegulatorOn) ||
                                          ax->driveStart() != static_cast<bool>(self->bDriveStart)));
+  // Unchanged inputs on a settled axis (power as requested, no error): nothing to request;
+  // the step's power follow-up (Kernel::updatePower) keeps the outputs current.
+  if (!changed && self->Enable && fb.lastCallCycle + 1 >= c.cycle && ax->operational() == static_cast<bool>(self->bRegulatorOn) &&
+      ax->state() != AxisState::ErrorStop && !ax->drive().faulted()) {
+    fb.lastCallCycle = c.cycle;
+    return;
+  }
   kernel().callPower(fb, *ax, self->Enable, self->bRegulatorOn, self->bDriveStart, c);
   if (changed) mirrorCall(*ax);
 }
