@@ -43,6 +43,7 @@ bool isCouplingKind(FbKind k) { return isGear(k) || k == FbKind::CamIn || k == F
 class CouplingBehaviour : public FbBehaviour {
 public:
   Axis* master = nullptr;
+  bool masterEncoder = false;
   std::shared_ptr<DirectGenerator> gen;
   int64_t lastNs = 0;
 
@@ -53,6 +54,7 @@ public:
     ax.startExternal(gen, nowNs);
     ax.setState(AxisState::SynchronizedMotion);
     ax.master = master;
+    masterEncoder = master && master->config().drive.kind == AxisKind::Encoder;
     lastNs = nowNs;
     restart();
   }
@@ -63,7 +65,13 @@ public:
     const Kinematic prev = gen->state;
     Kinematic next = prev;
     const bool wasIn = fb.out.inState, wasStart = fb.out.startSync, wasEnd = fb.out.endOfProfile;
-    Error e = advance(masterSeenBy(ax, *master, nowNs), prev, dt, fb, ax, next);
+    // masterSeenBy without reading the master's configuration every cycle.
+    Kinematic m = masterEncoder ? Kinematic{master->actPosition(), master->actVelocity(), 0} : master->set();
+    if (ax.phase.moving || ax.phase.done != 0) {
+      const Kinematic ph = ax.phase.at(nowNs);
+      m.p -= ph.p, m.v -= ph.v, m.a -= ph.a;
+    }
+    Error e = advance(m, prev, dt, fb, ax, next);
     if (e != Error::None) return k.errorStop(ax, e, nowNs, cycle);
     gen->state = next;
     gen->tSet = ax.movement().t(nowNs);
