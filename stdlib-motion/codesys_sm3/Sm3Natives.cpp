@@ -63,9 +63,7 @@ void mirror(const Axis& ax, sm3::AXIS_REF_SM3& r) {
   r.in.diActVelocity = clampDint(ax.actVelocity() * inc);
   r.in.wActTorque = clampInt(ax.actTorque() * 10);
   r.in.wErrorCode = ax.drive().errorCode();
-  int64_t din = 0;
-  ax.drive().readObject(0x60FD, 0, din);
-  r.in.dwDigitalInputs = static_cast<uint32_t>(din);
+  r.in.dwDigitalInputs = ax.drive().digitalInputs();
   r.out.wSetTorque = clampInt(ax.drive().targetTorque() * 10);
   r.out.diSetPosition = clampDint(ax.set().p * inc);
   r.out.diSetVelocity = clampDint(ax.set().v * inc);

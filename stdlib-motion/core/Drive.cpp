@@ -98,11 +98,7 @@ bool Drive::readObject(uint16_t index, uint8_t sub, int64_t& value) const {
     case 0x606C: value = std::llround(actVel_ * inc); return sub == 0;
     case 0x6077: value = std::llround(actTorque_ * 10.0); return sub == 0;
     case 0x6071: value = std::llround(targetTorque_ * 10.0); return sub == 0;
-    case 0x60FD: {
-      // CiA402 digital inputs: bit 0 negative limit, bit 1 positive limit, bit 2 home switch.
-      value = (limitNegativeActive() ? 1 : 0) | (limitPositiveActive() ? 2 : 0) | (homeSwitchActive() ? 4 : 0);
-      return sub == 0;
-    }
+    case 0x60FD: value = digitalInputs(); return sub == 0;
     default: break;
   }
   for (const Object& o : od_)

@@ -110,6 +110,10 @@ public:
   bool limitPositiveActive() const;
   bool limitNegativeActive() const;
   bool homeSwitchActive() const;
+  // CiA402 digital inputs (60FDh): bit 0 negative limit, bit 1 positive limit, bit 2 home switch.
+  uint32_t digitalInputs() const {
+    return (limitNegativeActive() ? 1u : 0u) | (limitPositiveActive() ? 2u : 0u) | (homeSwitchActive() ? 4u : 0u);
+  }
   // An index pulse passed during the last cycle: its position.
   bool indexPassed(double& at) const;
   double prevPosition() const { return prevPos_; }
