@@ -31,6 +31,7 @@ void Kernel::reset() {
 
 Axis& Kernel::addAxis(const AxisConfig& cfg) {
   axes_.push_back(std::make_unique<Axis>(cfg, static_cast<uint32_t>(axes_.size())));
+  if (cfg.drive.kind == AxisKind::Encoder) encoders_.push_back(axes_.back().get());
   return *axes_.back();
 }
 
@@ -629,8 +630,8 @@ void Kernel::cycle(uint32_t task, int64_t nowNs, int64_t intervalNs, uint64_t cy
   // Encoder-only axes are inputs: they are stepped first, so every axis that
   // follows one sees its value of this cycle, whatever the order of the axes.
   stepped_.assign(axes_.size(), 0);
-  for (auto& a : axes_)
-    if (a->task == task && a->config().drive.kind == AxisKind::Encoder) {
+  for (Axis* a : encoders_)
+    if (a->task == task) {
       stepped_[a->index()] = 1;
       stepAxis(*a, nowNs, dt, cycle);
       a->trackActual();

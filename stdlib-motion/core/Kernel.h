@@ -118,6 +118,7 @@ private:
   std::vector<std::unique_ptr<Axis>> axes_;
   std::vector<std::unique_ptr<FbSlot>> slots_;
   std::vector<uint8_t> stepped_;   // cycle(): axes already stepped
+  std::vector<Axis*> encoders_;    // encoder axes (their kind is fixed at addAxis), stepped first
   std::vector<Axis*> chain_;       // cycle(): an axis and its not yet stepped masters
 };
 
