@@ -183,14 +183,14 @@ void publishTappets(void* instance, const TappetTracker::Groups& g, uint32_t res
 void MC_CamIn(sm3::MC_CamIn* self) {
   CallCtx c = callContext();
   Axis* slave = bind(self->Slave, c);
-  Axis* master = slave ? bindMaster(self->Master, c) : nullptr;
-  if (refuse(self, master ? slave : nullptr) || rewired(self, *slave, c)) return;
+  if (refuse(self, slave) || rewired(self, *slave, c)) return;
   FbSlot& fb = slotOf(self, FbKind::CamIn);
-  const bool edge = self->Execute && !fb.execute;
-  if (!edge) {   // without an edge the call only publishes (and may clear) the outputs
+  if (!(self->Execute && !fb.execute)) {   // without an edge the call only publishes (and may clear) the outputs
     kernel().beginExecute(fb, self->Execute, c);
     return fb.sync();
   }
+  Axis* master = bindMaster(self->Master, c);   // read at the edge only
+  if (refuse(self, master)) return;
   CamInInputs in;
   {   // the inputs are read at the edge only
     in.sel = selectionOf(self->CamTableID);
