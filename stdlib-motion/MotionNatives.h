@@ -178,7 +178,13 @@ bool loadProjectIo(const std::string& dir, std::vector<IoDevice>& out, std::stri
 bool loadProjectCams(const std::string& dir, std::vector<CamConfig>& out, std::string& error);
 // A file name given by a program, resolved inside `dir`; false (with `why`) for an absolute
 // path, a path that leaves the directory (also through a symbolic link) or an empty name.
+// Also false for anything but a regular file (or a name not yet taken): a FIFO, a
+// directory or a device never blocks or feeds the controller.
 bool resolveProjectFile(const std::string& dir, const std::string& name, std::string& path, std::string& why);
+// Reads a resolved project file of at most kMaxProjectFileBytes.
+inline constexpr uint64_t kMaxProjectFileBytes = 64ull * 1024 * 1024;
+enum class ProjectFileRead : uint8_t { Ok, CannotOpen, TooBig };
+ProjectFileRead readProjectFile(const std::string& path, std::string& text);
 // ProjectIo.cpp: binds the devices at start; evaluates them after each task slot.
 std::shared_ptr<IoRuntime> startIo(const vm::StartCtx& sc, const std::vector<IoDevice>& devices, Kernel& k, std::string& error);
 void cycleIo(IoRuntime& io, int64_t nowNs);

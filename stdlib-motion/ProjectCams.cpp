@@ -30,14 +30,6 @@ bool numbers(const toml::node* n, size_t count, double* out) {
   return true;
 }
 
-bool actionNamed(const std::string& s, TappetAction& out) {
-  static const std::pair<const char*, TappetAction> names[] = {
-      {"none", TappetAction::None}, {"on", TappetAction::On}, {"off", TappetAction::Off}, {"invert", TappetAction::Invert}};
-  for (const auto& [n, a] : names)
-    if (s == n) return out = a, true;
-  return false;
-}
-
 bool readTappets(const toml::table& t, const std::string& here, std::vector<Tappet>& out, std::string& error) {
   const toml::array* arr = t["tappets"].as_array();
   if (!arr) return true;
@@ -47,7 +39,7 @@ bool readTappets(const toml::table& t, const std::string& here, std::vector<Tapp
     auto x = tt ? number(tt->get("x")) : std::nullopt;
     auto g = tt ? (*tt)["group"].value<int64_t>() : std::nullopt;
     const std::string pos = tt ? (*tt)["positive"].value_or<std::string>("none") : "", neg = tt ? (*tt)["negative"].value_or<std::string>("none") : "";
-    if (!x || !g || *g < 1 || *g > kMaxTappetGroups || !actionNamed(pos, tp.positive) || !actionNamed(neg, tp.negative)) {
+    if (!x || !g || *g < 1 || *g > kMaxTappetGroups || !tappetActionNamed(pos, tp.positive) || !tappetActionNamed(neg, tp.negative)) {
       error = here + "a tappet is { x = <master position>, group = 1..512, positive = \"on|off|invert|none\", negative = ... }";
       return false;
     }
@@ -72,12 +64,14 @@ bool readCam(const toml::table& t, const std::string& dir, const std::string& he
   if (auto file = t["file"].value<std::string>()) {
     std::string path;
     if (!resolveProjectFile(dir, *file, path, why)) return error = here + "cam file '" + *file + "': " + why, false;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return error = here + "cannot open cam file '" + *file + "'", false;
-    std::stringstream ss;
-    ss << in.rdbuf();
+    std::string text;
+    switch (readProjectFile(path, text)) {
+    case ProjectFileRead::Ok: break;
+    case ProjectFileRead::CannotOpen: return error = here + "cannot open cam file '" + *file + "'", false;
+    case ProjectFileRead::TooBig: return error = here + "cam file '" + *file + "' is larger than 64 MB", false;
+    }
     std::string name, detail;
-    if (readCamText(ss.str(), cam, name, detail) != CamFileError::None) return error = here + *file + ": " + detail, false;
+    if (readCamText(text, cam, name, detail) != CamFileError::None) return error = here + *file + ": " + detail, false;
     if (!tappets.empty()) return error = here + "the tappets of a cam file are in the file", false;
     return true;
   }
@@ -153,8 +147,24 @@ bool resolveProjectFile(const std::string& dir, const std::string& name, std::st
   for (; r != root.end(); ++r, ++f)
     if (f == full.end() || *r != *f) return why = "outside the project directory", false;
   if (f == full.end()) return why = "not a file", false;
+  const fs::file_status st = fs::status(full, ec);
+  if (fs::exists(st) && !fs::is_regular_file(st)) return why = "not a regular file", false;
   path = full.string();
   return true;
+}
+
+ProjectFileRead readProjectFile(const std::string& path, std::string& text) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return ProjectFileRead::CannotOpen;   // (it may have changed since)
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return ProjectFileRead::CannotOpen;
+  if (size > kMaxProjectFileBytes) return ProjectFileRead::TooBig;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return ProjectFileRead::CannotOpen;
+  std::stringstream ss;
+  ss << in.rdbuf();
+  text = ss.str();
+  return ProjectFileRead::Ok;
 }
 
 bool loadProjectCams(const std::string& dir, std::vector<CamConfig>& out, std::string& error) {

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 
 #include "stdlib-motion/codesys_sm3/Sm3Face.h"
 #include "stdlib-motion/core/Coupling.h"
@@ -243,8 +242,8 @@ template <class T>
 void camBounds(T* self, bool withDynamics) {
   xyvaAtEdge(self, [&](const Cam& cam) {
     const double Vm = self->dMasterVelMax, Am = self->dMasterAccMax, Ms = self->dMasterScaling, Ss = self->dSlaveScaling;
-    if (!std::isfinite(Vm) || !std::isfinite(Am) || !std::isfinite(Ms) || !std::isfinite(Ss) || Vm < 0 || Am < 0)
-      return Error::CbNotImplemented;
+    if (!(Vm >= 0 && Vm <= bounds::kVelocity) || !(Am >= 0 && Am <= bounds::kRate) || !validCamScaling(Ms) || !validCamScaling(Ss))
+      return Error::CbNotImplemented;   // NaN fails every comparison
     const CamExtremes& e = cam.extremes();
     auto range = [&](double lo, double hi, double f, double& mn, double& mx) {
       mn = std::min(lo * f, hi * f);
@@ -355,7 +354,8 @@ void SMC_CamRegister(sm3::SMC_CamRegister* self) {
     }
     if (Error e = readCamRef(self->CamTable, cam); e != Error::None) return k.fail(fb, e, c);
     if (cam->tappets().empty()) return k.fail(fb, Error::CrNoTappetsInCam, c);
-    if (!std::isfinite(Ms) || Ms <= 0 || !bounds::position(Mo) || !std::isfinite(h) || h < 0 || !std::isfinite(dtc) || std::fabs(dtc) > 10)
+    if (!validCamScaling(Ms) || !bounds::position(Mo) || !std::isfinite(h) || h < 0 || h > cam->length() || !std::isfinite(dtc) ||
+        std::fabs(dtc) > 10)
       return k.fail(fb, Error::CiScalingIncorrect, c);
     auto& users = MotionSession::current().cams.registerUsers;
     if (users[self->CamTable] >= 32) return k.fail(fb, Error::CrMoreThan32Accesses, c);
@@ -402,7 +402,7 @@ void SMC_GetCamSlaveSetPosition(sm3::SMC_GetCamSlaveSetPosition* self) {
   if (!master) return k.fail(fb, Error::NotReadyForMotion, c);
   const CamSelection sel = selectionOf(self->CamTableID);
   if (!sel.cam) return k.fail(fb, Error::CiNoCamSelected, c);
-  if (!std::isfinite(self->MasterScaling) || !std::isfinite(self->SlaveScaling) || !bounds::position(self->MasterOffset) ||
+  if (!validCamScaling(self->MasterScaling) || !validCamScaling(self->SlaveScaling) || !bounds::position(self->MasterOffset) ||
       !bounds::position(self->SlaveOffset))
     return k.fail(fb, Error::CiScalingIncorrect, c);
   Kinematic m = masterState(*master), out;
@@ -430,16 +430,15 @@ void SMC_ReadCAM(sm3::SMC_ReadCAM* self) {
   if (!k.beginExecute(fb, self->bExecute, c)) return fb.sync();
   std::string path;
   if (!camFile(self->sFileName, path)) return k.fail(fb, Error::RcamFileDoesntExist, c);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return k.fail(fb, Error::RcamFileDoesntExist, c);
-  in.seekg(0, std::ios::end);
-  if (in.tellg() > 64 * 1024 * 1024) return k.fail(fb, Error::RcamTooMuchData, c);
-  in.seekg(0);
-  std::stringstream ss;
-  ss << in.rdbuf();
+  std::string text;
+  switch (readProjectFile(path, text)) {
+  case ProjectFileRead::Ok: break;
+  case ProjectFileRead::CannotOpen: return k.fail(fb, Error::RcamFileDoesntExist, c);
+  case ProjectFileRead::TooBig: return k.fail(fb, Error::RcamTooMuchData, c);
+  }
   Cam cam;
   std::string name, detail;
-  switch (readCamText(ss.str(), cam, name, detail)) {
+  switch (readCamText(text, cam, name, detail)) {
   case CamFileError::None: break;
   case CamFileError::TooMuchData: return k.fail(fb, Error::RcamTooMuchData, c);
   case CamFileError::WrongType: return k.fail(fb, Error::RcamWrongCompileType, c);

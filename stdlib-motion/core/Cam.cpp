@@ -326,9 +326,7 @@ bool TappetTracker::move(double x) {
 
 // ---- The .CAM text format ---------------------------------------------------
 
-namespace {
-
-const char* actionName(TappetAction a) {
+const char* tappetActionName(TappetAction a) {
   switch (a) {
   case TappetAction::On: return "on";
   case TappetAction::Off: return "off";
@@ -337,11 +335,13 @@ const char* actionName(TappetAction a) {
   }
 }
 
-bool actionNamed(const std::string& s, TappetAction& out) {
+bool tappetActionNamed(const std::string& s, TappetAction& out) {
   for (TappetAction a : {TappetAction::None, TappetAction::On, TappetAction::Off, TappetAction::Invert})
-    if (s == actionName(a)) return out = a, true;
+    if (s == tappetActionName(a)) return out = a, true;
   return false;
 }
+
+namespace {
 
 std::string num(double v) {
   char buf[32];
@@ -375,7 +375,7 @@ std::string writeCamText(const Cam& cam, const std::string& name) {
     break;
   }
   o << "tappets " << cam.tappets().size() << "\n";
-  for (const Tappet& t : cam.tappets()) o << num(t.x) << " " << t.group << " " << actionName(t.positive) << " " << actionName(t.negative) << "\n";
+  for (const Tappet& t : cam.tappets()) o << num(t.x) << " " << t.group << " " << tappetActionName(t.positive) << " " << tappetActionName(t.negative) << "\n";
   o << "end\n";
   return o.str();
 }
@@ -442,7 +442,7 @@ CamFileError readCamText(const std::string& text, Cam& out, std::string& name, s
     double g = 0;
     if (!next(w)) return bad("the file ends inside the tappets");
     if (w.size() != 4 || !parseNum(w[0], t.x) || !parseNum(w[1], g) || g != std::floor(g) || std::fabs(g) > 1e6 ||
-        !actionNamed(w[2], t.positive) || !actionNamed(w[3], t.negative))
+        !tappetActionNamed(w[2], t.positive) || !tappetActionNamed(w[3], t.negative))
       return bad("a tappet is 'x group on|off|invert|none on|off|invert|none'");
     t.group = static_cast<int>(g);
     tappets.push_back(t);

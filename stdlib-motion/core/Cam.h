@@ -34,6 +34,9 @@ struct Tappet {
   TappetAction negative = TappetAction::None;
 };
 inline constexpr int kMaxTappetGroups = 512;   // MAX_NUM_TAPPETS
+// By the names of the .CAM format and project.toml: "none", "on", "off", "invert".
+bool tappetActionNamed(const std::string& name, TappetAction& out);
+const char* tappetActionName(TappetAction a);
 inline constexpr int kMaxCamElements = 65536;  // points of one cam (memory bound)
 
 struct CamSample {

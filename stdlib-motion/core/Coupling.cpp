@@ -43,18 +43,13 @@ bool isCouplingKind(FbKind k) { return isGear(k) || k == FbKind::CamIn || k == F
 class CouplingBehaviour : public FbBehaviour {
 public:
   Axis* master = nullptr;
-  bool masterEncoder = false;
   std::shared_ptr<DirectGenerator> gen;
   int64_t lastNs = 0;
 
   void start(Kernel&, FbSlot&, Axis& ax, int64_t nowNs) override {
-    gen = std::make_shared<DirectGenerator>();
-    gen->state = ax.set();
-    gen->tSet = 0;
-    ax.startExternal(gen, nowNs);
+    gen = DirectGenerator::startOn(ax, nowNs);
     ax.setState(AxisState::SynchronizedMotion);
     ax.master = master;
-    masterEncoder = master && master->config().drive.kind == AxisKind::Encoder;
     lastNs = nowNs;
     restart();
   }
@@ -65,13 +60,7 @@ public:
     const Kinematic prev = gen->state;
     Kinematic next = prev;
     const bool wasIn = fb.out.inState, wasStart = fb.out.startSync, wasEnd = fb.out.endOfProfile;
-    // masterSeenBy without reading the master's configuration every cycle.
-    Kinematic m = masterEncoder ? Kinematic{master->actPosition(), master->actVelocity(), 0} : master->set();
-    if (ax.phase.moving || ax.phase.done != 0) {
-      const Kinematic ph = ax.phase.at(nowNs);
-      m.p -= ph.p, m.v -= ph.v, m.a -= ph.a;
-    }
-    Error e = advance(m, prev, dt, fb, ax, next);
+    Error e = advance(masterSeenBy(ax, *master, nowNs), prev, dt, fb, ax, next);
     if (e != Error::None) return k.errorStop(ax, e, nowNs, cycle);
     gen->state = next;
     gen->tSet = ax.movement().t(nowNs);
@@ -558,17 +547,13 @@ void callBacklash(Kernel& k, FbSlot& fb, Axis& master, Axis& slave, bool execute
   k.accept(fb, slave, c);
 }
 
-namespace {
-bool scalingOk(double v) { return std::isfinite(v) && v > 0 && v <= 1e9; }
-}  // namespace
-
 void callCamIn(Kernel& k, FbSlot& fb, Axis& master, Axis& slave, bool execute, const CamInInputs& in, const CallCtx& c) {
   if (!k.beginExecute(fb, execute, c)) return fb.sync();
   fb.axis = &slave;
   fb.out.endOfProfile = false;
   if (!in.sel.cam) return k.fail(fb, Error::CiNoCamSelected, c);
   const Cam& cam = *in.sel.cam;
-  if (!scalingOk(in.masterScaling) || !scalingOk(in.slaveScaling) || !bounds::position(in.masterOffset) ||
+  if (!validCamScaling(in.masterScaling) || !validCamScaling(in.slaveScaling) || !bounds::position(in.masterOffset) ||
       !bounds::position(in.slaveOffset) || static_cast<int>(in.startMode) > 4 || !std::isfinite(in.tappetHysteresis) ||
       in.tappetHysteresis < 0 || in.tappetHysteresis > cam.length())
     return k.fail(fb, Error::CiScalingIncorrect, c);

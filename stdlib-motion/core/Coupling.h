@@ -55,6 +55,9 @@ struct CamInInputs {
   // (`resets` counts the couplings started, for SMC_GetTappetValue).
   void (*publishTappets)(void* instance, const TappetTracker::Groups& groups, uint32_t resets) = nullptr;
 };
+// A master or slave scaling of a cam: finite, > 0 and at most 1e9 (else 628 / 640).
+inline bool validCamScaling(double s) { return s > 0 && s <= 1e9; }   // NaN fails both
+
 // MC_CamIn: slave = SlaveScaling * CAM(MasterScaling * master + MasterOffset) + SlaveOffset
 // (docs/motion-cam.md for the relative modes, start modes and periods).
 void callCamIn(Kernel& k, FbSlot& fb, Axis& master, Axis& slave, bool execute, const CamInInputs& in, const CallCtx& c);
