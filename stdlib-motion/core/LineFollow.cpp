@@ -52,9 +52,7 @@ public:
   double l0 = 0, f0 = 0, ratio = 0;
   std::shared_ptr<DirectGenerator> gen;
   void start(Kernel&, FbSlot&, Axis& ax, int64_t nowNs) override {
-    gen = std::make_shared<DirectGenerator>();
-    gen->state = ax.set();
-    ax.startExternal(gen, nowNs);
+    gen = DirectGenerator::startOn(ax, nowNs);
     ax.setState(AxisState::DiscreteMotion);
     ax.master = leader;
   }

@@ -130,6 +130,13 @@ Kinematic DirectGenerator::at(double t) const {
 
 double DirectGenerator::duration() const { return std::numeric_limits<double>::infinity(); }
 
+std::shared_ptr<DirectGenerator> DirectGenerator::startOn(Axis& ax, int64_t nowNs) {
+  auto gen = std::make_shared<DirectGenerator>();
+  gen->state = ax.set();
+  ax.startExternal(gen, nowNs);
+  return gen;
+}
+
 // ---------------------------------------------------------------- behaviours
 
 namespace {
@@ -153,10 +160,7 @@ public:
   int64_t intervalNs = 1000000;
   std::shared_ptr<DirectGenerator> gen;
   void start(Kernel&, FbSlot&, Axis& ax, int64_t nowNs) override {
-    gen = std::make_shared<DirectGenerator>();
-    gen->state = ax.set();
-    gen->tSet = 0;
-    ax.startExternal(gen, nowNs);
+    gen = DirectGenerator::startOn(ax, nowNs);
     ax.setState(AxisState::SynchronizedMotion);
   }
   // The set values of this cycle's call become the set point of this cycle's step.
@@ -207,6 +211,7 @@ public:
 Error sizeError(TableKind k) {
   return k == TableKind::Position ? Error::PpArraySize : k == TableKind::Velocity ? Error::VpArraySize : Error::ApArraySize;
 }
+
 Error stepError(TableKind k) {
   return k == TableKind::Position ? Error::PpStep0ms : k == TableKind::Velocity ? Error::VpStep0ms : Error::ApStep0ms;
 }

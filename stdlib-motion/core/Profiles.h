@@ -56,6 +56,8 @@ public:
   double tSet = 0;
   Kinematic at(double t) const override;
   double duration() const override;
+  // A generator holding the axis's present set state, made the axis's movement from nowNs.
+  static std::shared_ptr<DirectGenerator> startOn(Axis& ax, int64_t nowNs);
 };
 
 // ---------------------------------------------------------------- instructions
