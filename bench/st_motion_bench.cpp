@@ -6,6 +6,9 @@
 // Second figure: 500 cam-coupled master/slave pairs (MC_MoveVelocity masters,
 // MC_CamIn slaves on a 33-point XYVA cycloid cam, selected once with
 // MC_CamTableSelect), every other FB called from ST in every cycle.  Target: < 100 us.
+// Each figure twice: the programs above never read a field of an axis variable,
+// so the kernel leaves them alone (docs/motion.md, "Mirrors"); the "reads" variant
+// adds one field read per axis, which makes every axis variable mirrored in every cycle.
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -21,26 +24,27 @@ using namespace stc;
 
 namespace {
 
-std::string program(int n) {
+std::string program(int n, bool reads) {
   std::ostringstream s;
   s << "VAR_GLOBAL\n  Axes : ARRAY[1.." << n << "] OF AXIS_REF_SM3;\nEND_VAR\n"
     << "PROGRAM MAIN\nVAR\n  power : ARRAY[1.." << n << "] OF MC_Power;\n  move : ARRAY[1.." << n
-    << "] OF MC_MoveAbsolute;\n  i : DINT;\n  cycle : DINT;\nEND_VAR\n"
+    << "] OF MC_MoveAbsolute;\n  i : DINT;\n  cycle : DINT;\n  sum : LREAL;\nEND_VAR\n"
     << "FOR i := 1 TO " << n << " DO\n"
     << "  power[i](Axis := Axes[i], Enable := TRUE, bRegulatorOn := TRUE, bDriveStart := TRUE);\n"
     << "  move[i](Axis := Axes[i], Execute := power[i].Status AND (cycle MOD 700) <> 0,\n"
     << "          Position := SEL((cycle / 700) MOD 2 = 1, 100.0 + DINT_TO_LREAL(i), 0.0),\n"
     << "          Velocity := 200, Acceleration := 1000, Deceleration := 1000);\n"
+    << (reads ? "  sum := sum + Axes[i].fActPosition;\n" : "")
     << "END_FOR\ncycle := cycle + 1;\nEND_PROGRAM\n";
   return s.str();
 }
 
-std::string camProgram(int n) {
+std::string camProgram(int n, bool reads) {
   std::ostringstream s;
   s << "VAR_GLOBAL\n  M, S : ARRAY[1.." << n << "] OF AXIS_REF_SM3;\n  pts : ARRAY[0..32] OF SMC_CAMXYVA;\n  cam : MC_CAM_REF;\nEND_VAR\n"
     << "PROGRAM MAIN\nVAR\n  pm, ps : ARRAY[1.." << n << "] OF MC_Power;\n  mv : ARRAY[1.." << n << "] OF MC_MoveVelocity;\n"
     << "  sel : ARRAY[1.." << n << "] OF MC_CamTableSelect;\n  cin : ARRAY[1.." << n << "] OF MC_CamIn;\n  i : DINT;\n  u : LREAL;\n"
-    << "  cycle : DINT;\nEND_VAR\n"
+    << "  cycle : DINT;\n  sum : LREAL;\nEND_VAR\n"
     << "IF cycle = 0 THEN\n  FOR i := 0 TO 32 DO\n    u := DINT_TO_LREAL(i) / 32.0;\n"
     << "    pts[i].dX := 360.0 * u;\n    pts[i].dY := 100.0 * (u - SIN(6.283185307179586 * u) / 6.283185307179586);\n"
     << "    pts[i].dV := 100.0 / 360.0 * (1.0 - COS(6.283185307179586 * u));\n"
@@ -52,14 +56,15 @@ std::string camProgram(int n) {
     << "  mv[i](Axis := M[i], Execute := pm[i].Status, Velocity := 360, Acceleration := 3600, Deceleration := 3600);\n"
     << "  IF NOT sel[i].Done THEN sel[i](Master := M[i], Slave := S[i], CamTable := cam, Execute := TRUE); END_IF\n"
     << "  cin[i](Master := M[i], Slave := S[i], Execute := sel[i].Done AND ps[i].Status, CamTableID := sel[i].CamTableID);\n"
+    << (reads ? "  sum := sum + S[i].fSetPosition;\n" : "")
     << "END_FOR\ncycle := cycle + 1;\nEND_PROGRAM\n";
   return s.str();
 }
 
 // Seconds of wall time per cycle over `cycles` cycles (after a warm-up).
-double perCycle(int n, uint64_t cycles, bool cams) {
-  const std::string file = "/tmp/stc_st_motion_bench_" + std::string(cams ? "cam_" : "") + std::to_string(n) + ".st";
-  std::ofstream(file) << (cams ? camProgram(n) : program(n));
+double perCycle(int n, uint64_t cycles, bool cams, bool reads) {
+  const std::string file = "/tmp/stc_st_motion_bench_" + std::string(cams ? "cam_" : "") + (reads ? "reads_" : "") + std::to_string(n) + ".st";
+  std::ofstream(file) << (cams ? camProgram(n, reads) : program(n, reads));
   Compilation comp;
   comp.addPath(file);
   CompileOptions co;
@@ -96,19 +101,21 @@ double perCycle(int n, uint64_t cycles, bool cams) {
 int main(int argc, char** argv) {
   const uint64_t cycles = argc > 1 ? std::stoull(argv[1]) : 5000;
   const std::string only = argc > 2 ? argv[2] : "";   // "axes" or "cams": one scenario
-  for (int n : {1, 100, 1000}) {
-    if (only == "cams") break;
-    double best = 1e9;
-    for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, false));
-    std::printf("%5d axes (MC_Power + MC_MoveAbsolute from ST, 1 ms cycle): %8.2f us per cycle (best of 3, %llu cycles)\n", n,
-                best * 1e6, static_cast<unsigned long long>(cycles));
-  }
-  for (int n : {1, 500}) {
-    if (only == "axes") break;
-    double best = 1e9;
-    for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, true));
-    std::printf("%5d cam pairs (2 MC_Power, MC_MoveVelocity, MC_CamTableSelect, MC_CamIn from ST): %8.2f us per cycle (best of 3, %llu cycles)\n",
-                n, best * 1e6, static_cast<unsigned long long>(cycles));
-  }
+  for (bool reads : {false, true})
+    for (int n : {1, 100, 1000}) {
+      if (only == "cams" || (reads && n != 1000)) continue;
+      double best = 1e9;
+      for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, false, reads));
+      std::printf("%5d axes (MC_Power + MC_MoveAbsolute from ST%s, 1 ms cycle): %8.2f us per cycle (best of 3, %llu cycles)\n", n,
+                  reads ? ", reads fActPosition" : "", best * 1e6, static_cast<unsigned long long>(cycles));
+    }
+  for (bool reads : {false, true})
+    for (int n : {1, 500}) {
+      if (only == "axes" || (reads && n != 500)) continue;
+      double best = 1e9;
+      for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, true, reads));
+      std::printf("%5d cam pairs (2 MC_Power, MC_MoveVelocity, MC_CamTableSelect, MC_CamIn from ST%s): %8.2f us per cycle (best of 3, %llu cycles)\n",
+                  n, reads ? ", reads fSetPosition" : "", best * 1e6, static_cast<unsigned long long>(cycles));
+    }
   return 0;
 }

@@ -43,6 +43,7 @@ void MotionSession::bindVar(Axis& ax, void* var, void (*mirrorFn)(const Axis&, v
 // Binds every configured axis to its AXIS_REF variable and task.
 bool MotionSession::start(const vm::StartCtx& sc, std::string& error) {
   Kernel& k = kernel;
+  mirrorsRead = sc.mirroredRead;
   imageBegin_ = sc.image;
   imageEnd_ = sc.image + sc.imageSize;
   // The cams of project.toml into their variables.
@@ -97,8 +98,9 @@ bool MotionSession::start(const vm::StartCtx& sc, std::string& error) {
 
 void MotionSession::cycle(const vm::HookCtx& c) {
   kernel.cycle(c.task, c.now, c.interval, c.cycle);
-  for (const AxisVar& v : axisVars)
-    if (v.axis && v.task == c.task && v.mirror) v.mirror(*v.axis, v.var);
+  if (mirrorsRead)
+    for (const AxisVar& v : axisVars)
+      if (v.axis && v.task == c.task && v.mirror) v.mirror(*v.axis, v.var);
   // The devices read the axes stepped above; the programs see them in their next cycle.
   cycleIo(*io_, c.now);
 }

@@ -130,7 +130,11 @@ public:
     const AxisVar& v = axisVars[index];
     return v.var == var && v.task == task ? v.axis : nullptr;
   }
+  // Whether anyone reads the axis variables' fields (vm::StartCtx::mirroredRead):
+  // without a reader they are bound but not refreshed (docs/motion.md, "Mirrors").
+  bool mirrorsRead = true;
   void mirror(const Axis& ax) {
+    if (!mirrorsRead) return;
     if (ax.index() < axisVars.size() && axisVars[ax.index()].mirror) axisVars[ax.index()].mirror(ax, axisVars[ax.index()].var);
   }
 

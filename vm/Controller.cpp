@@ -130,6 +130,12 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
     }
   }
   if (!opts.retainFile.empty()) restoreRetain(opts.retainFile, opts.cold, err);
+  // Whether the natives must keep the {attribute 'mirrored'} structs current.
+  bool mirroredRead = model_.readsMirrored || opts.observesMirrored;
+  for (const ValueRef& r : watches) mirroredRead = mirroredRead || r.mirrored;
+  for (const ValueRef& r : traced) mirroredRead = mirroredRead || r.mirrored;
+  if (!opts.retainFile.empty())
+    for (const RetainRegion& r : retainRegions()) mirroredRead = mirroredRead || sema::holdsMirrored(r.type);
   SchedulerOptions so;
   so.measure = opts.stats;
   so.realtime = opts.realtime;
@@ -191,6 +197,7 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
                     out.byte = image_ + ref.offset;
                   return true;
                 }};
+    sc.mirroredRead = mirroredRead;
     for (const auto& s : sessions_) {
       std::string e;
       if (!s->start(sc, e)) {

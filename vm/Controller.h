@@ -46,6 +46,9 @@ struct RunOptions {
   // the trace sample), with the tick's time.
   std::function<void(Time now)> beforeSlot;
   std::function<void(Time now)> afterTick;
+  // Something outside the program (a scenario probe ...) reads a path with
+  // ValueRef::mirrored; watches, traces and retain files are checked by run().
+  bool observesMirrored = false;
 };
 
 class Controller {

@@ -397,6 +397,7 @@ bool resolvePath(const codegen::ImageMap& map, const sema::Layout& layout, const
   }
   uint64_t off = root->offset;
   const Type* t = root->type;
+  bool mirrored = false;
   out.retain = root->retain;
   out.persistent = root->persistent;
   out.bit = root->bit;
@@ -426,6 +427,7 @@ bool resolvePath(const codegen::ImageMap& map, const sema::Layout& layout, const
   if (!applyIndex(segs[used - 1])) return false;
   for (size_t k = used; k < segs.size(); ++k) {
     const Type* st = strip(t);
+    mirrored = mirrored || sema::isMirrored(st);
     if (!(st->kind == TypeKind::Struct || st->kind == TypeKind::Union || st->kind == TypeKind::FunctionBlock || st->kind == TypeKind::Program)) {
       error = "'" + segs[k - 1].name + "' has no members (it is " + st->name + ")";
       return false;
@@ -450,6 +452,7 @@ bool resolvePath(const codegen::ImageMap& map, const sema::Layout& layout, const
   }
   out.offset = off;
   out.type = t;
+  out.mirrored = mirrored || sema::holdsMirrored(strip(t));
   return true;
 }
 

@@ -18,6 +18,9 @@ struct ValueRef {
   const sema::Type* type = nullptr;
   bool retain = false, persistent = false;
   int bit = -1;                        // a BOOL view of one bit
+  // The path crosses or holds an {attribute 'mirrored'} struct: whoever reads it
+  // needs the natives to keep those structs current (RunOptions::observesMirrored).
+  bool mirrored = false;
 };
 
 // Resolves `path` (case-insensitive).  On failure `error` says why, with a

@@ -47,6 +47,10 @@ struct StartCtx {
     int bit = -1;              // -1: the whole byte is the BOOL
   };
   std::function<bool(const std::string& path, BoolTarget& out)> lookupBool;
+  // Whether anyone reads the {attribute 'mirrored'} structs (AXIS_REF_SM3 ...): ST code
+  // (sema::Model::readsMirrored), a watch, a trace, a scenario probe or a retain file.
+  // When false the natives may leave them as they are (they still bind them).
+  bool mirroredRead = true;
 };
 
 class NativeSession {

@@ -505,6 +505,8 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
             .range(a[0]->range).note(decl->declRange.begin, "declared CONSTANT here", decl->declRange);
         return T.error();
       }
+      // Through an address ST may read any byte of the value.
+      if (holdsMirrored(S.valueType(t))) S.model_.readsMirrored = true;
       if (b.arg0 == FBitAdr) return T.elementary(TypeKind::DWord);
       return T.pointer(S.valueType(t));
     }

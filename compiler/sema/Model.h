@@ -35,6 +35,10 @@ struct Model {
   std::vector<ast::ConfigurationDecl*> configurations;
   // PROGRAMs some POU calls (their own instance then runs, whatever the configuration says).
   std::set<const Symbol*> calledPrograms;
+  // Some ST code names a field of an {attribute 'mirrored'} struct (AXIS_REF_SM3 ...)
+  // or takes the address of a value holding one: the natives must keep those
+  // structs current in every cycle (else they may leave them alone).
+  bool readsMirrored = false;
   // Symbol of a POU's own name, for each POU declaration.
   Symbol* symbolOf(const ast::PouDecl* d) const { return d ? d->symbol : nullptr; }
 };

@@ -471,6 +471,8 @@ void SemaImpl::resolveTypeSymbol(Symbol* s) {
   // its initial value is the default of every variable of the type.
   if (s->type && (td->def->kind == TypeRef::Struct || td->def->kind == TypeRef::Union || td->def->kind == TypeRef::Enum) && !s->type->decl)
     const_cast<Type*>(s->type)->decl = td;
+  if (s->type && s->type->decl == td && s->type->isStructured() && hasAttribute(td->attributes, "mirrored"))
+    const_cast<Type*>(s->type)->mirrored = true;
 }
 
 const Type* SemaImpl::resolveType(TypeRef* t, const Context& ctx, const std::string& derivedName) {

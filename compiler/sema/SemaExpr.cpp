@@ -696,6 +696,7 @@ const Type* SemaImpl::checkMember(MemberExpr* e, const Context& ctx, const Type*
             reportInternal(m.name, t->name, e->member.range, m.decl->name.range);
             return types_.error();
           }
+          if (isMirrored(bt)) model_.readsMirrored = true;
           return m.type;
         }
     std::vector<std::string> names;

@@ -170,6 +170,8 @@ void SemaImpl::checkStaticInstances() {
       if (const Pragma* pr = findAttribute(td->attributes, kStaticInstance); pr && !(s->type && s->type->decl == td && s->type->isStructured()))
         diags_.warning(pr->range.begin, "{attribute 'static_instance'} applies to FUNCTION_BLOCK and STRUCT declarations only; ignored",
                        "ignored-attribute").range(pr->range);
+      if (const Pragma* pr = findAttribute(td->attributes, "mirrored"); pr && !(s->type && s->type->decl == td && s->type->isStructured()))
+        diags_.warning(pr->range.begin, "{attribute 'mirrored'} applies to STRUCT declarations only; ignored", "ignored-attribute").range(pr->range);
     }
   for (Symbol* p : pous_) {
     PouDecl* d = p->pou ? p->pou->decl : nullptr;

@@ -131,4 +131,24 @@ const Type* TypeContext::subrange(const Type* base, int64_t lo, int64_t hi) {
   return t;
 }
 
+bool isMirrored(const Type* t) {
+  for (int guard = 0; t && guard < 64; t = t->base, ++guard)
+    if (t->mirrored) return true;
+  return false;
+}
+
+bool holdsMirrored(const Type* t) {
+  for (int depth = 0; t && depth < 64; ++depth) {
+    if (t->kind == TypeKind::Array) { t = t->element; continue; }
+    if (t->isPouInstance()) return true;   // its fields are not walked here: assume so
+    if (!t->isStructured()) return false;
+    if (isMirrored(t)) return true;
+    for (const Type* s = t; s; s = s->base)
+      for (const Member& m : s->members)
+        if (m.type && m.type != t && holdsMirrored(m.type)) return true;
+    return false;
+  }
+  return false;
+}
+
 }  // namespace stc::sema

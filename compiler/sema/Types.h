@@ -58,6 +58,9 @@ public:
   // FunctionBlock / Program / Interface
   Symbol* pou = nullptr;
   const ast::TypeDecl* decl = nullptr;
+  // Struct declared {attribute 'mirrored'}: natives refresh its fields from their own
+  // state; they may skip that work while nobody reads them (Model::readsMirrored).
+  bool mirrored = false;
 
   bool isError() const { return kind == TypeKind::Error; }
   bool isBool() const { return kind == TypeKind::Bool || kind == TypeKind::Bit; }
@@ -82,6 +85,12 @@ public:
   // The underlying integer type of enums and subranges, else this.
   const Type* underlying() const;
 };
+
+// Whether a value of type t is, or holds by value (arrays, struct members and
+// bases, FB and program instances, conservatively), an {attribute 'mirrored'} struct.
+bool holdsMirrored(const Type* t);
+// Whether t is an {attribute 'mirrored'} struct or extends one.
+bool isMirrored(const Type* t);
 
 class TypeContext {
 public:

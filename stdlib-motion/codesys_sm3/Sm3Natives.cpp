@@ -96,7 +96,7 @@ void mirrorAll(Axis& ax) { MotionSession::current().mirror(ax); }
 
 void mirrorCall(Axis& ax) {
   MotionSession& s = MotionSession::current();
-  if (ax.index() < s.axisVars.size() && s.axisVars[ax.index()].var)
+  if (s.mirrorsRead && ax.index() < s.axisVars.size() && s.axisVars[ax.index()].var)
     mirrorState(ax, *static_cast<sm3::AXIS_REF_SM3*>(s.axisVars[ax.index()].var));
 }
 

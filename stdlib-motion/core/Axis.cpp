@@ -14,7 +14,7 @@ public:
   double duration() const override { return 0; }
 };
 
-Axis::Axis(AxisConfig cfg, uint32_t index) : cfg_(std::move(cfg)), index_(index), drive_(cfg_.drive) {}
+Axis::Axis(AxisConfig cfg, uint32_t index) : index_(index), cfg_(std::move(cfg)), drive_(cfg_.drive) {}
 
 double Axis::reportPosition(double unwrapped) const {
   if (cfg_.period <= 0) return unwrapped;

@@ -33,11 +33,8 @@ enum class BufferMode : uint8_t { Aborting = 0, Buffered = 1, BlendingLow = 2, B
 // SMC_RAMPTYPE values: trapez ignores Jerk; the quadratic ramps use it.
 enum class RampType : uint8_t { Trapez = 0, SinSquare = 1, Quadratic = 2, QuadraticSmooth = 3 };
 
+// The fields read in every cycle come first (they share two cache lines).
 struct AxisConfig {
-  std::string name;              // the AXIS_REF global it is bound to ("" = bound from ST)
-  std::string task;              // owning task; "" = the task of the first FB call on it
-  int encoderChannel = -1;       // Encoder axes: the controller's local encoder input 0..2 (LS_Encoder_SetAxisMove)
-  DriveConfig drive;             // kind, model, scaling, switches, faults
   double period = 0;             // modulo period [u]; 0 = linear axis
   // Dynamic limits (fMaxVelocity ...): set values beyond them are errors 40-42.  0 = not checked.
   double maxVelocity = 0, maxAcceleration = 0, maxDeceleration = 0, maxJerk = 0;
@@ -51,6 +48,10 @@ struct AxisConfig {
   // stand within swErrorMaxDistance (0 = no bound); swLimitDecelerate FALSE: stop at once.
   bool swLimitDecelerate = true;
   double swLimitDeceleration = 0, swErrorMaxDistance = 0;
+  DriveConfig drive;             // kind, model, scaling, switches, faults
+  int encoderChannel = -1;       // Encoder axes: the controller's local encoder input 0..2 (LS_Encoder_SetAxisMove)
+  std::string name;              // the AXIS_REF global it is bound to ("" = bound from ST)
+  std::string task;              // owning task; "" = the task of the first FB call on it
 };
 
 class FbSlot;
@@ -86,7 +87,6 @@ public:
 struct Movement {
   enum class Kind : uint8_t { None, Position, Velocity, Stop, External };
   Kind kind = Kind::None;
-  Profile profile;
   std::shared_ptr<const Generator> gen;  // Kind::External
   int64_t originNs = 0;          // the profile's t = 0 ...
   double originFrac = 0;         // ... plus this many seconds (blended hand-overs start between cycles)
@@ -96,6 +96,7 @@ struct Movement {
   double rate = 1;
   int64_t rateNs = 0;            // when `rate` took effect ...
   double rateTau = 0;            // ... and the profile time then (rate == 1 from the origin: unused)
+  Profile profile;               // last: the fields above share a cache line
   double t(int64_t nowNs) const {
     if (rate == 1 && rateNs == 0) return static_cast<double>(nowNs - originNs) * 1e-9 + originFrac;
     return rateTau + rate * static_cast<double>(nowNs - rateNs) * 1e-9;
@@ -117,9 +118,6 @@ public:
   AxisState state() const { return state_; }
   Error error() const { return error_; }
   bool isModulo() const { return cfg_.period > 0; }
-
-  // Owning task (UINT32_MAX = not yet owned).
-  uint32_t task = UINT32_MAX;
 
   // ---- set point and feedback (unwrapped, technical units)
   const Kinematic& set() const { return set_; }
@@ -175,34 +173,6 @@ public:
   // The unwrapped target of an absolute move (modulo direction rules).  False: invalid direction.
   bool absoluteTarget(double position, Direction dir, double& target) const;
 
-  // ---- FBs in control
-  FbSlot* controller = nullptr;          // the FB whose command generates the set point
-  std::vector<FbSlot*> queue;            // buffered commands, oldest first
-  FbSlot* superimposer = nullptr;        // MC_MoveSuperImposed in progress
-  FbSlot* blockingStop = nullptr;        // MC_Stop holding the axis in Stopping
-  FbSlot* resetter = nullptr;            // MC_Reset waiting for the drive / standstill
-  FbSlot* power = nullptr;               // the MC_Power instance that last operated the axis
-  std::vector<FbSlot*> pendingClear;     // terminal outputs to clear after one cycle
-  std::vector<FbSlot*> observers;        // FBs with a behaviour that watch every step (probes, cam switches ...)
-  double lastCommandedTarget = 0;        // for MC_MoveAdditive (unwrapped)
-  FbErrorRecord fbError;                 // the latest FB error (Kernel::fail / finish with an error)
-  // Coupling master (cam, gear ...): the kernel steps this axis after its master in every
-  // cycle of their task, so the coupling reads the master's set state of the same cycle.
-  Axis* master = nullptr;
-  // MC_Phasing: the master position this axis's coupling sees is shifted by
-  // `done` plus the profile in progress (positive = this slave lags).
-  struct PhaseShift {
-    double done = 0;
-    Profile profile;
-    int64_t originNs = 0;
-    bool moving = false;
-    Kinematic at(int64_t nowNs) const {
-      if (!moving) return Kinematic{done, 0, 0};
-      Kinematic k = profile.at(static_cast<double>(nowNs - originNs) * 1e-9);
-      k.p += done;
-      return k;
-    }
-  } phase;
 
   // ---- the cycle: advances the set point to nowNs, runs the drive, supervises.
   StepResult step(int64_t nowNs, double dt);
@@ -218,21 +188,61 @@ private:
   Kinematic baseState() const;
   Kinematic beginBase(Movement::Kind kind, int64_t nowNs, double frac);
   void updateControlword();
-  AxisConfig cfg_;
+
+  // ---- data, ordered for the cache: what every FB call and every step reads comes
+  // first (the first lines of the object); profiles and rarely used state last.
+public:
+  // ---- FBs in control
+  FbSlot* controller = nullptr;          // the FB whose command generates the set point
+  // Coupling master (cam, gear ...): the kernel steps this axis after its master in every
+  // cycle of their task, so the coupling reads the master's set state of the same cycle.
+  Axis* master = nullptr;
+  FbSlot* power = nullptr;               // the MC_Power instance that last operated the axis
+  FbSlot* superimposer = nullptr;        // MC_MoveSuperImposed in progress
+  FbSlot* blockingStop = nullptr;        // MC_Stop holding the axis in Stopping
+  FbSlot* resetter = nullptr;            // MC_Reset waiting for the drive / standstill
+  // Owning task (UINT32_MAX = not yet owned).
+  uint32_t task = UINT32_MAX;
+private:
   uint32_t index_;
   AxisState state_ = AxisState::PowerOff;
   Error error_ = Error::None;
   bool wantPower_ = false, driveStart_ = false, resetPulse_ = false;
   uint16_t cwBits_ = 0;
   Kinematic set_;                        // total set state
-  Kinematic heldBase_, baseNow_;                   // base movement state (without offset and superimposed part)
-  Movement mv_, sup_;
   double offset_ = 0;                    // MC_SetPosition shifts and finished superimposed moves
   double override_ = 1;                  // setOverride
+public:
+  std::vector<FbSlot*> pendingClear;     // terminal outputs to clear after one cycle
+  std::vector<FbSlot*> observers;        // FBs with a behaviour that watch every step (probes, cam switches ...)
+  std::vector<FbSlot*> queue;            // buffered commands, oldest first
+private:
+  Kinematic heldBase_, baseNow_;         // base movement state (without offset and superimposed part)
+  Movement mv_;
+  AxisConfig cfg_;
+  Drive drive_;
+public:
+  double lastCommandedTarget = 0;        // for MC_MoveAdditive (unwrapped)
+  FbErrorRecord fbError;                 // the latest FB error (Kernel::fail / finish with an error)
+  // MC_Phasing: the master position this axis's coupling sees is shifted by
+  // `done` plus the profile in progress (positive = this slave lags).
+  struct PhaseShift {
+    double done = 0;
+    int64_t originNs = 0;
+    bool moving = false;
+    Profile profile;
+    Kinematic at(int64_t nowNs) const {
+      if (!moving) return Kinematic{done, 0, 0};
+      Kinematic k = profile.at(static_cast<double>(nowNs - originNs) * 1e-9);
+      k.p += done;
+      return k;
+    }
+  } phase;
+private:
+  Movement sup_;
   std::shared_ptr<HomingCoast> homingCoast_;   // the drive's homing set point as a movement (Axis.cpp)
   Kinematic supState_;                   // contribution of the superimposed move in progress
   Limits lastLimits_{1, 1, 1, 0};
-  Drive drive_;
 };
 
 }  // namespace stc::motion

@@ -128,7 +128,6 @@ private:
   void applyFaults(int64_t nowNs);
   void stepStateMachine();
   void motor(double setPos, double setVel, double setAcc, double dt);
-  DriveConfig cfg_;
   size_t nextFault_ = 0;
   Cia402 state_ = Cia402::SwitchOnDisabled;
   uint16_t controlword_ = 0, prevControlword_ = 0;
@@ -140,6 +139,7 @@ private:
   double lagSetPos_ = 0, lagSetVel_ = 0;   // the set point of the previous cycle (Lag model)
   double shift_ = 0;                 // sum of the coordinate shifts
   int8_t modesOfOperation_ = 8;      // 0x6060: cyclic synchronous position
+  DriveConfig cfg_;                  // after the state: the state fields share two cache lines
   struct Object { uint16_t index; uint8_t sub; bool writable; int64_t value; };
   std::vector<Object> od_;
   std::shared_ptr<DriveHoming> homing_;   // created on the first cycle in homing mode

@@ -538,6 +538,7 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
   ro.cycles = sc.cycles;
   ro.duration = sc.duration;
   ro.traces = sc.trace;
+  for (const CheckState& cs : checks) ro.observesMirrored = ro.observesMirrored || cs.probe.ref.mirrored;
   TempFile tmp;
   if (!sc.trace.empty() && tmp.path().empty()) {
     report += "  error: cannot create a temporary file\n";
