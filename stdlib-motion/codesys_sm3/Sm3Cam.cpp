@@ -297,7 +297,7 @@ void SMC_CamEditor(sm3::SMC_CamEditor* self) {
   std::shared_ptr<const Cam> cam;
   if (Error e = readCamRef(self->cam, cam); e != Error::None) {
     self->bError = true;
-    self->nErrorID = static_cast<decltype(self->nErrorID)>(code(e));
+    self->nErrorID = static_cast<decltype(self->nErrorID)>(smcError(e));
     return;
   }
   self->bError = false;

@@ -25,11 +25,16 @@ FbSlot& configSlot(T* self, FbKind kind) {
   return kernel().slot(self->__handle, self, kind, &publishConfig<T>);
 }
 
-// fSWMax* live in AXIS_REF_SM3 only (the kernel does not use them).
+// fSWMax* live in AXIS_REF_SM3 only (the kernel does not use them); 1031 is the
+// axis error as its SMC_ERROR number.
 class Sm3Parameters : public FaceParameters {
 public:
-  explicit Sm3Parameters(sm3::AXIS_REF_SM3* r) : ref(r) {}
+  Sm3Parameters(sm3::AXIS_REF_SM3* r, const Axis& a) : ref(r), ax(a) {}
   bool read(int32_t n, double& v) const override {
+    if (n == 1031) {
+      v = smcError(ax.error());
+      return true;
+    }
     double* p = field(n);
     if (!p) return false;
     v = *p;
@@ -50,12 +55,13 @@ private:
     }
   }
   sm3::AXIS_REF_SM3* ref;
+  const Axis& ax;
 };
 
 template <class T>
 void readParameter(T* self, bool asBool) {
   axisFb(self, [&](Kernel& k, Axis& ax, const CallCtx& c) {
-    Sm3Parameters face(self->Axis);
+    Sm3Parameters face(self->Axis, ax);
     callReadParameter(k, configSlot(self, FbKind::Parameter), ax, self->Enable, self->ParameterNumber, asBool, c, &face);
   });
 }
@@ -63,7 +69,7 @@ void readParameter(T* self, bool asBool) {
 template <class T>
 void writeParameter(T* self, bool asBool) {
   axisFb(self, [&](Kernel& k, Axis& ax, const CallCtx& c) {
-    Sm3Parameters face(self->Axis);
+    Sm3Parameters face(self->Axis, ax);
     callWriteParameter(k, configSlot(self, FbKind::Parameter), ax, self->Execute, self->ParameterNumber,
                        static_cast<double>(self->Value), asBool, c, &face);
   });

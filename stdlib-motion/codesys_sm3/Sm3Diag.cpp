@@ -14,7 +14,7 @@ namespace diag = stc::motion::diag;
 
 namespace {
 
-int16_t id(Error e) { return static_cast<int16_t>(code(e)); }
+int16_t id(Error e) { return static_cast<int16_t>(smcError(e)); }
 
 sm3::AXIS_REF_SM3* refOf(void* p) { return static_cast<sm3::AXIS_REF_SM3*>(p); }
 

@@ -1,9 +1,134 @@
 // The SMC_ERROR names and descriptions for SMC_ErrorString: spec/amc1600c.md appendix 3,
 // else spec/leadshine_pmc600.md A-1.  Generated once from the manuals' tables; names as
-// sm3_types.st spells them.  The SM3 face's texts: the core has numbers only.
+// sm3_types.st spells them.  The SM3 face's numbers and texts: the core has faults only.
 #include "stdlib-motion/codesys_sm3/Sm3ErrorText.h"
 
 namespace stc::motion::sm3face {
+
+namespace {
+
+// Indexed by Error; the SMC_ERROR names are in the comments (spec/amc1600c.md, appendix 3).
+constexpr uint16_t kSmcNumbers[] = {
+    0,       // None
+    1,       // Communication: SMC_DI_GENERAL_COMMUNICATION_ERROR
+    2,       // DriveError: SMC_DI_AXIS_ERROR
+    10,      // SwLimitsExceeded: SMC_DI_SWLIMITS_EXCEEDED
+    11,      // HwLimitsExceeded: SMC_DI_HWLIMITS_EXCEEDED
+    14,      // VoltageDisabled: SMC_DI_VOLTAGE_DISABLED
+    16,      // FollowingError: SMC_DI_POSITIONLAGERROR
+    17,      // DiHomingError: SMC_DI_HOMING_ERROR
+    20,      // RegulatorOrStartNotSet: SMC_REGULATOR_OR_START_NOT_SET
+    21,      // WrongControllerMode: SMC_WRONG_CONTROLLER_MODE
+    30,      // FbWasntCalledDuringMotion: SMC_FB_WASNT_CALLED_DURING_MOTION
+    32,      // AxisRefChanged: SMC_AXIS_REF_CHANGED_DURING_OPERATION
+    33,      // FbActiveAxisDisabled: SMC_FB_ACTIVE_AXIS_DISABLED
+    34,      // NotReadyForMotion: SMC_AXIS_NOT_READY_FOR_MOTION
+    40,      // VdMaxVelocityExceeded: SMC_VD_MAX_VELOCITY_EXCEEDED
+    41,      // VdMaxAccelerationExceeded: SMC_VD_MAX_ACCELERATION_EXCEEDED
+    42,      // VdMaxDecelerationExceeded: SMC_VD_MAX_DECELERATION_EXCEEDED
+    50,      // HomingInvalidVelAcc: SMC_3SH_INVALID_VELACC_VALUES
+    51,      // HomingModeNeedsHwLimit: SMC_3SH_MODE_NEEDS_HWLIMIT
+    70,      // ScmNotSupported: SMC_SCM_NOT_SUPPORTED
+    71,      // ScmAxisInWrongState: SMC_SCM_AXIS_IN_WRONG_STATE
+    72,      // ScmInterrupted: SMC_SCM_INTERRUPTED
+    75,      // StWrongControllerMode: SMC_ST_WRONG_CONTROLLER_MODE
+    90,      // CgrZeroValues: SMC_CGR_ZERO_VALUES
+    91,      // CgrDrivePowered: SMC_CGR_DRIVE_POWERED
+    92,      // CgrInvalidPosPeriod: SMC_CGR_INVALID_POSPERIOD
+    93,      // CgrPosPeriodNotIntegral: SMC_CGR_POSPERIOD_NOT_INTEGRAL
+    110,     // PowerTaskCycleEmpty: SMC_P_FTASKCYCLE_EMPTY
+    120,     // ResetNoErrorToReset: SMC_R_NO_ERROR_TO_RESET
+    121,     // ResetDriveDoesntAnswer: SMC_R_DRIVE_DOESNT_ANSWER
+    122,     // ResetNotResettable: SMC_R_ERROR_NOT_RESETTABLE
+    130,     // ReadParamUnknown: SMC_RP_PARAM_UNKNOWN
+    131,     // ReadParamRequestingError: SMC_RP_REQUESTING_ERROR
+    133,     // ReadParamConversionError: SMC_RP_PARAM_CONVERSION_ERROR
+    140,     // WriteParamInvalid: SMC_WP_PARAM_INVALID
+    141,     // WriteParamSendingError: SMC_WP_SENDING_ERROR
+    143,     // WriteParamConversionError: SMC_WP_PARAM_CONVERSION_ERROR
+    170,     // HomeAxisWasntStandstill: SMC_H_AXIS_WASNT_STANDSTILL
+    171,     // HomeAxisDidntStartHoming: SMC_H_AXIS_DIDNT_START_HOMING
+    172,     // HomeAxisDidntAnswer: SMC_H_AXIS_DIDNT_ANSWER
+    173,     // HomeErrorWhenStopping: SMC_H_ERROR_WHEN_STOPPING
+    174,     // HomeAxisInErrorStop: SMC_H_AXIS_IN_ERRORSTOP
+    181,     // StopInvalidAccDec: SMC_MS_INVALID_ACCDEC_VALUES
+    182,     // StopDirectionNotApplicable: SMC_MS_DIRECTION_NOT_APPLICABLE
+    183,     // StopAxisInErrorStop: SMC_MS_AXIS_IN_ERRORSTOP
+    184,     // BlockingStopWasntCalled: SMC_BLOCKING_MC_STOP_WASNT_CALLED
+    200,     // UnknownTaskInterval: SMC_UNKNOWN_TASK_INTERVAL
+    201,     // MaInvalidVelAcc: SMC_MA_INVALID_VELACC_VALUES
+    202,     // MaInvalidDirection: SMC_MA_INVALID_DIRECTION
+    226,     // MrInvalidVelAcc: SMC_MR_INVALID_VELACC_VALUES
+    227,     // MrInvalidDirection: SMC_MR_INVALID_DIRECTION
+    251,     // MadInvalidVelAcc: SMC_MAD_INVALID_VELACC_VALUES
+    252,     // MadInvalidDirection: SMC_MAD_INVALID_DIRECTION
+    276,     // MsiInvalidVelAcc: SMC_MSI_INVALID_VELACC_VALUES
+    277,     // MsiInvalidDirection: SMC_MSI_INVALID_DIRECTION
+    301,     // MvInvalidAccDec: SMC_MV_INVALID_ACCDEC_VALUES
+    302,     // MvDirectionNotApplicable: SMC_MV_DIRECTION_NOT_APPLICABLE
+    325,     // PpArraySize: SMC_PP_ARRAYSIZE
+    326,     // PpStep0ms: SMC_PP_STEP0MS
+    350,     // VpArraySize: SMC_VP_ARRAYSIZE
+    351,     // VpStep0ms: SMC_VP_STEP0MS
+    375,     // ApArraySize: SMC_AP_ARRAYSIZE
+    376,     // ApStep0ms: SMC_AP_STEP0MS
+    400,     // TpTriggerOccupied: SMC_TP_TRIGGEROCCUPIED
+    401,     // TpCouldntSetWindow: SMC_TP_COULDNT_SET_WINDOW
+    402,     // TpCommError: SMC_TP_COMM_ERROR
+    410,     // AtTriggerNotOccupied: SMC_AT_TRIGGERNOTOCCUPIED
+    426,     // McrInvalidVelAcc: SMC_MCR_INVALID_VELACC_VALUES
+    427,     // McrInvalidDirection: SMC_MCR_INVALID_DIRECTION
+    451,     // McaInvalidVelAcc: SMC_MCA_INVALID_VELACC_VALUES
+    452,     // McaInvalidDirection: SMC_MCA_INVALID_DIRECTION
+    453,     // McaDirectionNotApplicable: SMC_MCA_DIRECTION_NOT_APPLICABLE
+    475,     // SdlInvalidAxisState: SMC_SDL_INVALID_AXIS_STATE
+    476,     // SdlInvalidVelocityValues: SMC_SDL_INVALID_VELOCITY_VALUES
+    600,     // CrNoTappetsInCam: SMC_CR_NO_TAPPETS_IN_CAM
+    601,     // CrTooManyTappets: SMC_CR_TOO_MANY_TAPPETS
+    602,     // CrMoreThan32Accesses: SMC_CR_MORE_THAN_32_ACCESSES
+    625,     // CiNoCamSelected: SMC_CI_NO_CAM_SELECTED
+    626,     // CiMasterOutOfScale: SMC_CI_MASTER_OUT_OF_SCALE
+    627,     // CiRampInNeedsVelAcc: SMC_CI_RAMPIN_NEEDS_VELACC_VALUES
+    628,     // CiScalingIncorrect: SMC_CI_SCALING_INCORRECT
+    640,     // CbNotImplemented: SMC_CB_NOT_IMPLEMENTED
+    675,     // GiRatioDenom: SMC_GI_RATIO_DENOM
+    676,     // GiInvalidAcc: SMC_GI_INVALID_ACC
+    677,     // GiInvalidDec: SMC_GI_INVALID_DEC
+    679,     // GiInvalidJerk: SMC_GI_INVALID_JERK
+    725,     // PhInvalidVelAccDec: SMC_PH_INVALID_VELACCDEC
+    726,     // PhRotaryAxisPeriod0: SMC_PH_ROTARYAXIS_PERIOD0
+    750,     // NoCamRefType: SMC_NO_CAM_REF_TYPE
+    751,     // CamTableDoesNotCoverMasterScale: SMC_CAM_TABLE_DOES_NOT_COVER_MASTER_SCALE
+    752,     // CamTableEmptyMasterRange: SMC_CAM_TABLE_EMPTY_MASTER_RANGE
+    753,     // CamTableInvalidMasterMinMax: SMC_CAM_TABLE_INVALID_MASTER_MINMAX
+    775,     // GipMasterDirectionChange: SMC_GIP_MASTER_DIRECTION_CHANGE
+    776,     // GipSlaveReversalCannotBeAvoided: SMC_GIP_SLAVE_REVERSAL_CANNOT_BE_AVOIDED
+    777,     // GipAvoidReversalForFiniteAxis: SMC_GIP_AVOID_REVERSAL_FOR_FINITE_AXIS
+    800,     // BcBacklashTooBig: SMC_BC_BL_TOO_BIG
+    850,     // SrtNotStandstillOrPoweroff: SMC_SRT_NOT_STANDSTILL_OR_POWEROFF
+    851,     // SrtInvalidRampType: SMC_SRT_INVALID_RAMPTYPE
+    852,     // SmtNotStandstillOrPoweroff: SMC_SMT_NOT_STANDSTILL_OR_POWEROFF
+    853,     // SmtInvalidMovementTypeOrPositionPeriod: SMC_SMT_INVALID_MOVEMENTTYPE_OR_POSITIONPERIOD
+    854,     // SmtAxisNotVirtual: SMC_SMT_AXIS_NOT_VIRTUAL
+    2200,    // RcamFileDoesntExist: SMC_RCAM_FILE_DOESNT_EXIST
+    2201,    // RcamTooMuchData: SMC_RCAM_TOO_MUCH_DATA
+    2202,    // RcamWrongCompileType: SMC_RCAM_WRONG_COMPILE_TYPE
+    2203,    // RcamWrongVersion: SMC_RCAM_WRONG_VERSION
+    2204,    // RcamUnexpectedEof: SMC_RCAM_UNEXPECTED_EOF
+    2100,    // AdlFileCannotBeOpened: SMC_ADL_FILE_CANNOT_BE_OPENED
+    2101,    // AdlBufferOverrun: SMC_ADL_BUFFER_OVERRUN
+    0x7001,  // BlendingNotSupportedByPrevious: see docs/motion.md ("Buffer modes")
+    0x7002,  // BufferFull: more buffered commands than the queue holds
+};
+static_assert(sizeof(kSmcNumbers) / sizeof(kSmcNumbers[0]) == static_cast<size_t>(Error::Count_), "one SMC_ERROR per core fault");
+
+}  // namespace
+
+uint16_t smcError(Error e) {
+  const auto i = static_cast<size_t>(e);
+  return i < static_cast<size_t>(Error::Count_) ? kSmcNumbers[i] : 0;
+}
+
 
 namespace {
 struct ErrorText { uint16_t id; const char* name; const char* text; };

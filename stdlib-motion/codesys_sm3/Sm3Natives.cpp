@@ -33,7 +33,7 @@ void mirrorState(const Axis& ax, sm3::AXIS_REF_SM3& r) {
   r.bRegulatorOn = ax.operational();
   r.bDriveStart = ax.driveStart();
   r.bError = ax.state() == AxisState::ErrorStop;
-  r.nErrorID = static_cast<int16_t>(code(ax.error()));
+  r.nErrorID = static_cast<int16_t>(smcError(ax.error()));
   r.bFBErrorOccured = ax.state() == AxisState::ErrorStop || ax.fbError.set;
   const AxisConfig& c = ax.config();
   r.bSWLimitEnable = c.swLimitEnable;
@@ -215,7 +215,7 @@ void MC_ReadAxisError(sm3::MC_ReadAxisError* self) {
   self->AxisErrorID = 0;
   reader(self, [&](Axis& ax) {
     self->AxisError = ax.state() == AxisState::ErrorStop;
-    self->AxisErrorID = ax.drive().errorCode() ? ax.drive().errorCode() : code(ax.error());
+    self->AxisErrorID = ax.drive().errorCode() ? ax.drive().errorCode() : smcError(ax.error());
     const AxisConfig& c = ax.config();
     self->SWEndSwitchActive = c.swLimitEnable && (ax.set().p >= c.swLimitPositive || ax.set().p <= c.swLimitNegative);
   });

@@ -100,7 +100,7 @@ Error readAxisParameter(const Axis& ax, int32_t number, double& v, int64_t inter
     case 1016: v = ax.operational() && ax.driveStart(); break;
     case 1025: v = static_cast<double>(intervalNs) * 1e-9; break;
     case 1030: v = ax.state() == AxisState::ErrorStop; break;
-    case 1031: v = code(ax.error()); break;
+    // 1031 (the axis error number) is answered by the face: the core's faults have no numbers.
     case 1036: v = 0; break;        // no error log is kept: logging is never disabled
     case 1040: v = c.drive.kind == AxisKind::Virtual; break;
     case 1060: v = ax.isModulo() ? 0 : 1; break;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stdlib-motion/codesys_sm3/Sm3ErrorText.h"
 #include "stdlib-motion/core/InputBounds.h"
 
 namespace stc::motion::leadshine {
@@ -326,7 +327,7 @@ void callHandwheel(Kernel& k, FbSlot& fb, Axis& ax, const HandwheelInputs& in, H
         in.filter < 1 || in.filter > 100 || !finite(in.additivePos) || !enc || !k.claim(*enc, c))
       b->errorId = kIpoParaErr;
     else if ((e = k.motionStateError(ax)) != Error::None)
-      b->errorId = code(e);
+      b->errorId = sm3face::smcError(e);
     if (b->errorId == 0) {
       b->in = in;
       b->encoder = enc;
@@ -343,8 +344,8 @@ void callHandwheel(Kernel& k, FbSlot& fb, Axis& ax, const HandwheelInputs& in, H
     b->addLeft = n;
   }
   // Ended by the kernel (another command, ErrorStop): bError with the SMC_ERROR code.
-  if (fb.out.error && fb.out.errorId != Error::None) b->errorId = code(fb.out.errorId);
-  if (fb.out.aborted && b->errorId == 0) b->errorId = code(Error::NotReadyForMotion);
+  if (fb.out.error && fb.out.errorId != Error::None) b->errorId = sm3face::smcError(fb.out.errorId);
+  if (fb.out.aborted && b->errorId == 0) b->errorId = sm3face::smcError(Error::NotReadyForMotion);
   if (!in.exec && !fb.out.busy && b->errorId != 0 && !rising) {
     // Errors last while Exec stays TRUE.
     b->errorId = 0;

@@ -81,7 +81,7 @@ void LS_Encoder_SetAxisMove(sm3::LS_Encoder_SetAxisMove* self) {
   Axis* ax = bind(self->SelAxis, c);
   if (!ax) {
     self->bError = true;
-    self->dErrorID = code(Error::NotReadyForMotion);
+    self->dErrorID = smcError(Error::NotReadyForMotion);
     return;
   }
   ls::HandwheelInputs in;

@@ -29,7 +29,10 @@ uint32_t TEST_MoveAbs(uint16_t axisNo, double pos, double vel, double acc, doubl
 
 int16_t TEST_CmdStatus(uint32_t id) { return static_cast<int16_t>(MotionSession::current().commands.status(id)); }
 
-uint16_t TEST_CmdError(uint32_t id) { return static_cast<uint16_t>(code(MotionSession::current().commands.error(id))); }
+// This face numbers the core's faults by class, as a vendor with a coarse error table
+// would (0 none, 1 invalid parameter, 2 wrong state, 3 queue full, 4 axis fault,
+// 5 communication, 6 file): the same fault is 201 in the SM3 face and 1 here.
+uint16_t TEST_CmdError(uint32_t id) { return static_cast<uint16_t>(faultClass(MotionSession::current().commands.error(id))); }
 
 bool TEST_WaitCmdFinish(uint32_t id) {
   const CommandTable& t = MotionSession::current().commands;

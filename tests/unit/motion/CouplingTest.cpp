@@ -6,7 +6,8 @@
 #include <cmath>
 
 #include "MotionSim.h"
-#include "stdlib-motion/core/Coupling.h"
+#include "stdlib-motion/codesys_sm3/Sm3ErrorText.h"
+#include "stdlib-motion//core/Coupling.h"
 
 using namespace stc::motion;
 using stc::motion::test::Sim;
@@ -124,7 +125,7 @@ TEST(Coupling, GearInPosReachesTheSyncPointWithTheMaster) {
     callGearInPos(p.s.k, g, *p.master, *p.slave, true, in, p.s.ctx());
     const uint64_t c = p.s.cycle;
     p.s.endCycle();
-    ASSERT_FALSE(g.out.error) << code(g.out.errorId);
+    ASSERT_FALSE(g.out.error) << sm3face::smcError(g.out.errorId);
     if (g.out.startSync && !startCycle) startCycle = c;
     if (!startCycle) {
       ASSERT_EQ(p.slave->set().p, 0.0);

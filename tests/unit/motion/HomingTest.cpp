@@ -10,7 +10,8 @@
 #include <optional>
 
 #include "MotionSim.h"
-#include "stdlib-motion/core/Homing.h"
+#include "stdlib-motion/codesys_sm3/Sm3ErrorText.h"
+#include "stdlib-motion//core/Homing.h"
 
 using namespace stc::motion;
 using stc::motion::test::Sim;
@@ -164,7 +165,7 @@ TEST(Homing, MethodTableFinalPositions) {
     placeAt(s, k.start);
     setMethod(*s.ax, k.method);
     HomeRun r = runHome(s, h, 3);
-    EXPECT_TRUE(r.doneCycle) << "method " << k.method << " from " << k.start << " error " << code(r.error);
+    EXPECT_TRUE(r.doneCycle) << "method " << k.method << " from " << k.start << " error " << sm3face::smcError(r.error);
     EXPECT_EQ(s.ax->set().p, 3.0) << "method " << k.method;
     EXPECT_EQ(s.ax->actPosition(), 3.0) << "method " << k.method;
     EXPECT_NEAR(mechanical(*s.ax), k.mech, 1e-9) << "method " << k.method << " from " << k.start;
@@ -857,7 +858,7 @@ TEST(Homing, SmcHomeModesFinalPositions) {
     FbSlot& h = s.slot(FbKind::Home);
     s.powerOn(p);
     const uint64_t done = runSmcHome(s, h, smcHome(k.mode, k.dir), 20000);
-    EXPECT_TRUE(done && h.out.done) << k.mode << " " << code(h.out.errorId);
+    EXPECT_TRUE(done && h.out.done) << k.mode << " " << sm3face::smcError(h.out.errorId);
     EXPECT_EQ(s.ax->set().p, 0.0) << k.mode;
     EXPECT_NEAR(mechanical(*s.ax), k.mech, 1e-9) << k.mode << " dir " << k.dir;
   }

@@ -290,7 +290,7 @@ TEST(MotionKernel, BadInputsGiveTheDocumentedErrorIdInTheCallCycle) {
     s.k.callMove(f, *s.ax, true, c.in, s.ctx());
     EXPECT_TRUE(f.out.error);
     EXPECT_FALSE(f.out.busy);
-    EXPECT_EQ(code(f.out.errorId), code(c.expect)) << "kind " << int(c.kind);
+    EXPECT_EQ(f.out.errorId, c.expect) << "kind " << int(c.kind);
   }
   EXPECT_EQ(s.ax->state(), AxisState::Standstill);   // FB errors leave the axis alone
   FbSlot& h = s.slot(FbKind::Halt);

@@ -9,7 +9,8 @@
 #include <vector>
 
 #include "MotionSim.h"
-#include "stdlib-motion/core/Profiles.h"
+#include "stdlib-motion/codesys_sm3/Sm3ErrorText.h"
+#include "stdlib-motion//core/Profiles.h"
 
 using namespace stc::motion;
 using stc::motion::test::Sim;
@@ -219,7 +220,7 @@ TEST(MotionProfiles, ProfileInputErrors) {
     callProfile(s.k, fb, *s.ax, true, c.kind, c.n, c.pts, true, c.scale, 0, s.ctx());
     EXPECT_TRUE(fb.out.error);
     EXPECT_FALSE(fb.out.busy);      // Busy never rises
-    EXPECT_EQ(fb.out.errorId, c.e) << code(c.e);
+    EXPECT_EQ(fb.out.errorId, c.e) << sm3face::smcError(c.e);
     s.endCycle();
     callProfile(s.k, fb, *s.ax, false, c.kind, c.n, c.pts, true, c.scale, 0, s.ctx());
     EXPECT_FALSE(fb.out.error);
