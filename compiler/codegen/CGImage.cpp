@@ -442,7 +442,8 @@ void CodeGen::defaultObject(ConstBuffer& buf, uint64_t off, const Type* t, std::
   }
 }
 
-void CodeGen::initObject(ConstBuffer& buf, uint64_t off, const Type* t, const Expr* init, std::vector<DynamicInit>& dyn, const VarDecl* decl) {
+void CodeGen::initObject(ConstBuffer& buf, uint64_t off, const Type* t, const Expr* init, std::vector<DynamicInit>& dyn, const VarDecl* decl,
+                         bool overlay) {
   if (!t) return;
   // No initial value: the default of a named alias type (TYPE Percent : INT := 50).
   if (!init && decl && decl->type)
@@ -450,20 +451,20 @@ void CodeGen::initObject(ConstBuffer& buf, uint64_t off, const Type* t, const Ex
       if (td->init && !isa<ArrayInitExpr>(td->init) && !isa<StructInitExpr>(td->init) && !isAggregate(t)) init = td->init;
   if (!init) { defaultObject(buf, off, t, dyn); return; }
   if (auto* ai = dyn_cast<ArrayInitExpr>(init); ai && t->kind == TypeKind::Array) {
-    defaultObject(buf, off, t, dyn);
+    if (!overlay) defaultObject(buf, off, t, dyn);
     uint64_t stride = alignUp(sizeOf(t->element), alignOf(t->element));
     uint64_t count = stride ? sizeOf(t) / stride : 0;
     uint64_t i = 0;
     for (const auto& el : ai->elements)
       for (uint64_t k = 0; k < el.repeat && i < count; ++k, ++i)
-        if (el.value) initObject(buf, off + i * stride, t->element, el.value, dyn);
+        if (el.value) initObject(buf, off + i * stride, t->element, el.value, dyn, nullptr, true);
     return;
   }
   if (auto* si = dyn_cast<StructInitExpr>(init)) {
-    defaultObject(buf, off, t, dyn);
+    if (!overlay) defaultObject(buf, off, t, dyn);
     for (const auto& f : si->fields) {
       const sema::FieldLayout* fl = layout_.field(t, f.name.name);
-      if (fl && f.value && !fl->indirect) initObject(buf, off + fl->offset, fl->type, f.value, dyn);
+      if (fl && f.value && !fl->indirect) initObject(buf, off + fl->offset, fl->type, f.value, dyn, nullptr, true);
     }
     return;
   }
@@ -553,6 +554,8 @@ const std::vector<std::pair<std::string, Symbol*>>& CodeGen::vtableSlots(const T
 }
 
 int CodeGen::vtableSlot(const Type* fb, const std::string& key) {
+  // Only function block instances carry a vtable pointer: a PROGRAM's methods are called directly.
+  if (!fb || fb->kind != TypeKind::FunctionBlock) return -1;
   const auto& slots = vtableSlots(fb);
   for (size_t i = 0; i < slots.size(); ++i)
     if (slots[i].first == key) return static_cast<int>(i);

@@ -107,8 +107,11 @@ public:
   // ------------------------------------------------------------ image (CGImage.cpp)
   void layoutImage();
   void buildImage();
+  // overlay: the bytes already hold the initial value of the enclosing object (a member or
+  // element of a structure or array initialiser), so a nested initialiser only changes
+  // what it names instead of starting from the type's default.
   void initObject(ConstBuffer& buf, uint64_t off, const Type* t, const ast::Expr* init, std::vector<DynamicInit>& dyn,
-                  const ast::VarDecl* decl = nullptr);
+                  const ast::VarDecl* decl = nullptr, bool overlay = false);
   void defaultObject(ConstBuffer& buf, uint64_t off, const Type* t, std::vector<DynamicInit>& dyn);
   bool foldScalar(const ast::Expr* e, const Type* to, llvm::Constant*& out);
   void writeScalar(ConstBuffer& buf, uint64_t off, const Type* t, llvm::Constant* c);

@@ -1051,9 +1051,9 @@ private:
                 .range(SourceRange(l, {file_.id, l.offset + 2}));
             break;
           }
-          if (!wide) {
-            out += static_cast<char>(v);
-          } else if (v < 0x80) {
+          // The text is UTF-8 for both kinds: a STRING's $hh is the character U+00hh, which
+          // codegen stores as the byte hh (Latin-1), never as the start of a UTF-8 sequence.
+          if (v < 0x80) {
             out += static_cast<char>(v);
           } else if (v < 0x800) {
             out += static_cast<char>(0xC0 | (v >> 6));
