@@ -1212,6 +1212,10 @@ const Type* SemaImpl::checkCall(CallExpr* e, const Context& ctx, const Type* exp
   if (auto* n = dyn_cast<NameExpr>(callee)) {
     std::string up = upperCase(n->ident.name);
     Symbol* s = lookup(up, ctx);
+    // CODESYS: TIME() is the controller's clock (the standard library's __STC_CLOCK_TIME).
+    if (!s && up == "TIME" && e->args.empty())
+      if (Symbol* clock = lookup("__STC_CLOCK_TIME", ctx); clock && clock->kind == Symbol::Function)
+        return callPou(e, clock, ctx, n->ident.name, false);
     if (!s) {
       std::vector<std::string> names = visibleNames(ctx);
       for (auto& [k, b] : builtinMap_) names.push_back(b->name);
