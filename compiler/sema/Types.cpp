@@ -1,5 +1,7 @@
 #include "sema/Types.h"
 
+#include <set>
+
 namespace stc::sema {
 
 unsigned Type::bits() const {
@@ -137,18 +139,28 @@ bool isMirrored(const Type* t) {
   return false;
 }
 
-bool holdsMirrored(const Type* t) {
-  for (int depth = 0; t && depth < 64; ++depth) {
-    if (t->kind == TypeKind::Array) { t = t->element; continue; }
-    if (t->isPouInstance()) return true;   // its fields are not walked here: assume so
-    if (!t->isStructured()) return false;
-    if (isMirrored(t)) return true;
-    for (const Type* s = t; s; s = s->base)
-      for (const Member& m : s->members)
-        if (m.type && m.type != t && holdsMirrored(m.type)) return true;
-    return false;
-  }
+namespace {
+
+// Depth-first over the types held by value; `seen` ends containment cycles (an error that
+// sema reports, but expressions in such a program are still checked) and shared subtypes.
+bool holdsMirroredIn(const Type* t, std::set<const Type*>& seen) {
+  while (t && t->kind == TypeKind::Array) t = t->element;
+  if (!t || !seen.insert(t).second) return false;
+  if (t->isPouInstance()) return true;   // its fields are not walked here: assume so
+  if (!t->isStructured()) return false;
+  if (isMirrored(t)) return true;
+  int guard = 0;
+  for (const Type* s = t; s && guard < 64; s = s->base, ++guard)
+    for (const Member& m : s->members)
+      if (holdsMirroredIn(m.type, seen)) return true;
   return false;
+}
+
+}  // namespace
+
+bool holdsMirrored(const Type* t) {
+  std::set<const Type*> seen;
+  return holdsMirroredIn(t, seen);
 }
 
 }  // namespace stc::sema
