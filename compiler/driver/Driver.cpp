@@ -75,7 +75,7 @@ bool Compilation::addPath(const std::string& path) {
 
 bool Compilation::check(const CompileOptions& opts) {
   using clock = std::chrono::steady_clock;
-  dialect_ = opts.dialect ? *opts.dialect : projectDialect_ ? *projectDialect_ : sema::Dialect::IEC;
+  dialect_ = opts.dialect ? *opts.dialect : projectDialect_ ? *projectDialect_ : sema::Dialect::Codesys;
   ParseOptions popts;
   popts.defines = opts.defines;
   for (const std::string& d : projectDefines_) popts.defines.insert(asciiLower(d));

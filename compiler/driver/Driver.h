@@ -84,7 +84,7 @@ private:
   std::optional<sema::Dialect> projectDialect_;
   std::vector<std::string> projectDefines_;
   std::vector<std::string> projectLibraries_;
-  sema::Dialect dialect_ = sema::Dialect::IEC;
+  sema::Dialect dialect_ = sema::Dialect::Codesys;
   CompileStats stats_;
 };
 

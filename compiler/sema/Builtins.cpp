@@ -325,7 +325,7 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
       checkAll();
       if (anyError()) return T.error();
       const Type* at = argTypes()[0]->underlying();
-      if (!(at->isBitString() || (S.codesys() && at->isInteger()))) return bad(a[0], "a bit string (BYTE, WORD, DWORD or LWORD)");
+      if (!(at->isBitString() || (S.allows(DialectRule::IntegerBitString) && at->isInteger()))) return bad(a[0], "a bit string (BYTE, WORD, DWORD or LWORD)");
       std::string target = fn.substr(fn.rfind('_') + 1);
       return T.byName(target);
     }
@@ -354,7 +354,7 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
       const Type* t = argTypes()[0];
       if (t->isReal()) return t;
       if (t->underlying()->isInteger()) {
-        if (!S.codesys() && !S.isUntypedLiteral(a[0])) return bad(a[0], "REAL or LREAL (convert integers explicitly in IEC mode)");
+        if (!S.allows(DialectRule::IntegerRealFunctions) && !S.isUntypedLiteral(a[0])) return bad(a[0], "REAL or LREAL (convert integers explicitly in IEC mode)");
         return T.elementary(TypeKind::LReal);
       }
       return bad(a[0], "REAL or LREAL");
@@ -380,7 +380,7 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
       const Type* t = common(0);
       if (t->isError()) return t;
       const Type* u = t->underlying();
-      if (b.arg0 == FMod ? !(u->isInteger() || (S.codesys() && u->isBitString())) : !(u->isNumeric() || u->isDuration() || (S.codesys() && u->isBitString())))
+      if (b.arg0 == FMod ? !(u->isInteger() || (S.allows(DialectRule::IntegerBitString) && u->isBitString())) : !(u->isNumeric() || u->isDuration() || (S.allows(DialectRule::IntegerBitString) && u->isBitString())))
         return bad(a[0], b.arg0 == FMod ? "an integer" : "a number");
       return t;
     }
@@ -389,7 +389,7 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
       const Type* t = common(0);
       if (t->isError()) return t;
       const Type* u = t->underlying();
-      if (!(u->isAnyBit() || (S.codesys() && u->isInteger()))) return bad(a[0], "BOOL or a bit string");
+      if (!(u->isAnyBit() || (S.allows(DialectRule::IntegerBitString) && u->isInteger()))) return bad(a[0], "BOOL or a bit string");
       return t;
     }
     case FMove: {
@@ -404,8 +404,8 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
       if (anyError()) return T.error();
       auto ts = argTypes();
       const Type* u = ts[0]->underlying();
-      if (!(u->isBitString() || (S.codesys() && u->isInteger()))) return bad(a[0], "a bit string (BYTE, WORD, DWORD, LWORD)");
-      if (!(ts[1]->underlying()->isInteger() || (S.codesys() && ts[1]->underlying()->isBitString()))) return bad(a[1], "an integer");
+      if (!(u->isBitString() || (S.allows(DialectRule::IntegerBitString) && u->isInteger()))) return bad(a[0], "a bit string (BYTE, WORD, DWORD, LWORD)");
+      if (!(ts[1]->underlying()->isInteger() || (S.allows(DialectRule::IntegerBitString) && ts[1]->underlying()->isBitString()))) return bad(a[1], "an integer");
       return ts[0];
     }
     case FSel: {

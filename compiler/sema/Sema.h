@@ -6,13 +6,12 @@
 
 #include "ast/AST.h"
 #include "basic/Diagnostics.h"
+#include "sema/DialectRules.h"
 
 namespace stc::sema {
 
-enum class Dialect { IEC, Codesys };
-
 struct SemaOptions {
-  Dialect dialect = Dialect::IEC;
+  Dialect dialect = Dialect::Codesys;   // what CODESYS V3 accepts; IEC is strict
 };
 
 class SemaImpl;

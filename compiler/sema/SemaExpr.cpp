@@ -150,9 +150,23 @@ Conv SemaImpl::classify(const Type* from, const Type* to) const {
   return Conv::Incompatible;
 }
 
+// Whether the dialect converts implicitly where classify() found `c`.
+bool SemaImpl::allowsImplicit(Conv c) const {
+  switch (c) {
+    case Conv::Exact: case Conv::Widening: return true;
+    case Conv::Narrowing: case Conv::SignChange: return allows(DialectRule::ImplicitNarrowing);
+    case Conv::IntBit: return allows(DialectRule::IntegerBitString);
+    case Conv::EnumInt: return allows(DialectRule::IntegerEnum);
+    case Conv::IntBool: return allows(DialectRule::IntegerAsBool);
+    case Conv::Pointer: return allows(DialectRule::PointerConversions);
+    case Conv::Incompatible: return false;
+  }
+  return false;
+}
+
 bool SemaImpl::literalFits(const LiteralExpr* lit, const Type* to) const {
   // Integer constants convert to an enumeration only in CODESYS mode.
-  if (to->kind == TypeKind::Enum && !codesys()) return false;
+  if (to->kind == TypeKind::Enum && !allows(DialectRule::IntegerEnum)) return false;
   // A subrange takes the constants inside its bounds.
   if (to->kind == TypeKind::Subrange && lit->litKind == LiteralExpr::Int) {
     if (lit->intValue > static_cast<uint64_t>(INT64_MAX) && !(to->element && to->element->isUnsignedInt())) return false;
@@ -179,12 +193,11 @@ bool SemaImpl::literalFits(const LiteralExpr* lit, const Type* to) const {
   }
   if (u->isBitString()) {
     unsigned bits = u->bits();
-    if (neg) return codesys() && v <= (1ull << (bits - 1));
+    if (neg) return allows(DialectRule::IntegerBitString) && v <= (1ull << (bits - 1));
     return bits == 64 || v <= (1ull << bits) - 1;
   }
-  if (u->isBool()) return codesys() && !neg && v <= 1;
-  (void)0;
-  if ((to->isPointer() || to->kind == TypeKind::Interface || to->isReference()) && v == 0 && codesys()) return true;
+  if (u->isBool()) return !neg && v <= 1;   // IEC allows BOOL#0 / BOOL#1 written as 0 / 1
+  if ((to->isPointer() || to->kind == TypeKind::Interface || to->isReference()) && v == 0 && allows(DialectRule::ZeroAsNull)) return true;
   return false;
 }
 
@@ -254,7 +267,7 @@ bool SemaImpl::checkConversion(const Type* to, Expr* e, const char* what) {
       return false;
     }
     if (to->kind == TypeKind::Enum) {
-      diags_.error(r.begin, "cannot convert an integer to '" + to->name + "' in IEC mode; use one of its values (or --dialect=codesys)",
+      diags_.error(r.begin, "cannot convert an integer to '" + to->name + "' in IEC mode; use one of its values",
                    "type-mismatch").range(r);
       return false;
     }
@@ -264,7 +277,12 @@ bool SemaImpl::checkConversion(const Type* to, Expr* e, const char* what) {
       return false;
     }
     if (lit->litKind == LiteralExpr::Int && u->isBool()) {
-      diags_.error(r.begin, "cannot use an integer constant as BOOL in IEC mode; use TRUE or FALSE (or --dialect=codesys)", "type-mismatch")
+      if (allows(DialectRule::IntegerAsBool)) {
+        diags_.warning(r.begin, "implicit conversion of an integer constant to 'BOOL' (non-zero is TRUE)", "int-bool-conversion").range(r)
+            .fixit(r, lit->intValue ? "TRUE" : "FALSE");
+        return true;
+      }
+      diags_.error(r.begin, "cannot use an integer constant other than 0 or 1 as BOOL in IEC mode; use TRUE or FALSE", "type-mismatch")
           .range(r).fixit(r, lit->intValue ? "TRUE" : "FALSE");
       return false;
     }
@@ -318,7 +336,7 @@ bool SemaImpl::checkConversion(const Type* to, Expr* e, const char* what) {
     case Conv::SignChange: {
       const char* verb = c == Conv::Narrowing ? "may lose data" : "changes signedness";
       std::string msg = "implicit conversion from '" + from->name + "' to '" + to->name + "' " + verb;
-      if (codesys()) {
+      if (allows(DialectRule::ImplicitNarrowing)) {
         diags_.warning(r.begin, msg, c == Conv::Narrowing ? "narrowing" : "sign-conversion").range(r);
         return true;
       }
@@ -329,7 +347,7 @@ bool SemaImpl::checkConversion(const Type* to, Expr* e, const char* what) {
     }
     case Conv::IntBit:
     case Conv::EnumInt: {
-      if (codesys()) {
+      if (allows(c == Conv::IntBit ? DialectRule::IntegerBitString : DialectRule::IntegerEnum)) {
         unsigned fb = from->bits(), tb = to->bits();
         if (fb && tb && tb < fb)
           diags_.warning(r.begin, "implicit conversion from '" + from->name + "' to '" + to->name + "' may lose data", "narrowing").range(r);
@@ -341,7 +359,7 @@ bool SemaImpl::checkConversion(const Type* to, Expr* e, const char* what) {
       return false;
     }
     case Conv::IntBool: {
-      if (codesys()) {
+      if (allows(DialectRule::IntegerAsBool)) {
         if (to->isBool())
           diags_.warning(r.begin, "implicit conversion from '" + from->name + "' to 'BOOL' (non-zero is TRUE)", "int-bool-conversion").range(r);
         return true;
@@ -352,8 +370,8 @@ bool SemaImpl::checkConversion(const Type* to, Expr* e, const char* what) {
       return false;
     }
     case Conv::Pointer:
-      if (codesys()) return true;
-      diags_.error(r.begin, "no implicit conversion from '" + from->name + "' to '" + to->name + "' (allowed with --dialect=codesys)",
+      if (allows(DialectRule::PointerConversions)) return true;
+      diags_.error(r.begin, "no implicit conversion from '" + from->name + "' to '" + to->name + "' in IEC mode",
                    "type-mismatch").range(r);
       return false;
     case Conv::Incompatible:
@@ -771,7 +789,7 @@ const Type* SemaImpl::checkIndex(IndexExpr* e, const Context& ctx) {
     const Type* it = checkExpr(i, ctx);
     if (it->isError()) continue;
     const Type* u = it->underlying();
-    if (!(u->isInteger() || (codesys() && (u->isBitString() || u->kind == TypeKind::Enum))))
+    if (!(u->isInteger() || (allows(DialectRule::IntegerBitString) && u->isBitString()) || (allows(DialectRule::IntegerEnum) && u->kind == TypeKind::Enum)))
       diags_.error(i->range.begin, "array index must be an integer, not '" + it->name + "'", "type-mismatch").range(i->range);
   }
   if (bt->isError()) return bt;
@@ -828,7 +846,7 @@ const Type* SemaImpl::commonType(const Type* a, const Type* b, Expr* ea, Expr* e
     const Type* t = types_.elementary(k);
     if (ok(a, t) && ok(b, t)) return t;
   }
-  if (codesys()) {
+  if (allows(DialectRule::IntegerBitString)) {
     const Type* ua = a->underlying();
     const Type* ub = b->underlying();
     auto intLike = [](const Type* t) { return t->isInteger() || t->isBitString() || t->isBool(); };
@@ -853,7 +871,7 @@ const Type* SemaImpl::checkUnary(UnaryExpr* e, const Context& ctx, const Type* e
   switch (e->op) {
     case UnaryOp::Neg:
       if (u->isSignedInt() || u->isReal() || u->isDuration()) return t;
-      if (codesys() && (u->isUnsignedInt() || u->isBitString())) return t;
+      if (allows(DialectRule::UnsignedNegation) && (u->isUnsignedInt() || u->isBitString())) return t;
       if (u->isUnsignedInt()) {
         diags_.error(e->opLoc, "unary '-' applied to unsigned type '" + t->name + "'", "sign-conversion").range(e->operand->range);
         return types_.error();
@@ -864,7 +882,7 @@ const Type* SemaImpl::checkUnary(UnaryExpr* e, const Context& ctx, const Type* e
       break;
     case UnaryOp::Not:
       if (u->isBool() || u->isBitString()) return t;
-      if (codesys() && u->isInteger()) return t;
+      if (allows(DialectRule::IntegerBitString) && u->isInteger()) return t;
       break;
   }
   diags_.error(e->opLoc, std::string("invalid operand to unary '") + spelling(e->op) + "' ('" + t->name + "')", "type-mismatch")
@@ -921,8 +939,8 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
       if (add && ul->isDuration() && (ur->kind == TypeKind::Tod || ur->kind == TypeKind::DT)) return rt;
       if (!add && ul->isDate() && ur->isDate() && classify(lt, rt) != Conv::Incompatible) return timeOf(ul, ur);
       if (ul->isPointer() || ur->isPointer()) {
-        if (!codesys()) {
-          diags_.error(e->opLoc, "pointer arithmetic is only allowed with --dialect=codesys", "pointer-arithmetic").range(e->range);
+        if (!allows(DialectRule::PointerConversions)) {
+          diags_.error(e->opLoc, "pointer arithmetic is not allowed with --dialect=iec", "pointer-arithmetic").range(e->range);
           return types_.error();
         }
         if (ul->isPointer() && (ur->isInteger() || ur->isBitString())) return lt;
@@ -937,8 +955,8 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
       if (e->op == BinaryOp::Div) checkDivisor(e, ctx);
       if ((e->op == BinaryOp::Mul || e->op == BinaryOp::Div) && ul->isDuration() && ur->isNumeric()) return lt;
       if (e->op == BinaryOp::Mul && ul->isNumeric() && ur->isDuration()) return rt;
-      bool lnum = ul->isNumeric() || (codesys() && (ul->isBitString() || ul->kind == TypeKind::Enum));
-      bool rnum = ur->isNumeric() || (codesys() && (ur->isBitString() || ur->kind == TypeKind::Enum));
+      bool lnum = ul->isNumeric() || (allows(DialectRule::IntegerBitString) && ul->isBitString()) || (allows(DialectRule::IntegerEnum) && ul->kind == TypeKind::Enum);
+      bool rnum = ur->isNumeric() || (allows(DialectRule::IntegerBitString) && ur->isBitString()) || (allows(DialectRule::IntegerEnum) && ur->kind == TypeKind::Enum);
       if (!lnum || !rnum) {
         if (ul->isBitString() || ur->isBitString())
           diags_.error(e->opLoc, std::string("arithmetic '") + op + "' on bit-string type '" + (ul->isBitString() ? lt : rt)->name +
@@ -952,8 +970,8 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
     }
     case BinaryOp::Mod: {
       checkDivisor(e, ctx);
-      bool lok = ul->isInteger() || (codesys() && ul->isBitString());
-      bool rok = ur->isInteger() || (codesys() && ur->isBitString());
+      bool lok = ul->isInteger() || (allows(DialectRule::IntegerBitString) && ul->isBitString());
+      bool rok = ur->isInteger() || (allows(DialectRule::IntegerBitString) && ur->isBitString());
       if (!lok || !rok) return invalid();
       return commonType(lt, rt, e->lhs, e->rhs, e->opLoc, op);
     }
@@ -968,11 +986,11 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
       // Enumerations compare only with the same enumeration (CODESYS: also integers).
       if (lt->kind == TypeKind::Enum || rt->kind == TypeKind::Enum) {
         const Type* other = lt->kind == TypeKind::Enum ? rt : lt;
-        if (codesys() && (other->underlying()->isInteger() || other->isBitString())) return boolT;
+        if (allows(DialectRule::IntegerEnum) && (other->underlying()->isInteger() || other->isBitString())) return boolT;
         return invalid();
       }
       if ((ul->isNumeric() || ul->isBitString() || ul->isBool()) && (ur->isNumeric() || ur->isBitString() || ur->isBool())) {
-        if (ul->isBool() != ur->isBool() && !codesys()) return invalid();
+        if (ul->isBool() != ur->isBool() && !allows(DialectRule::IntegerAsBool)) return invalid();
         if (!commonType(ul, ur, e->lhs, e->rhs, e->opLoc, op)->isError()) return boolT;
         return types_.error();
       }
@@ -981,7 +999,7 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
       if (ul->isChar() && ur->isChar()) return boolT;
       if (lt->kind == TypeKind::Enum || rt->kind == TypeKind::Enum) {
         const Type* other = lt->kind == TypeKind::Enum ? rt : lt;
-        if (codesys() && (other->isInteger() || other->isBitString())) return boolT;
+        if (allows(DialectRule::IntegerEnum) && (other->isInteger() || other->isBitString())) return boolT;
         if (lt->kind == TypeKind::Enum && rt->kind == TypeKind::Enum && lt == rt) return boolT;
         return invalid();
       }
@@ -993,7 +1011,7 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
           Expr* other = lp ? e->rhs : e->lhs;
           auto* lit = dyn_cast<LiteralExpr>(other);
           if (lit && lit->litKind == LiteralExpr::Int && lit->intValue == 0) return boolT;
-          if (codesys()) return boolT;
+          if (allows(DialectRule::PointerConversions)) return boolT;
         }
         if (isPouType(ul) && isPouType(ur)) return boolT;
       }
@@ -1001,14 +1019,14 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
     }
     case BinaryOp::And: case BinaryOp::Or: case BinaryOp::Xor: {
       if (ul->isBool() && ur->isBool()) return boolT;
-      bool lok = ul->isAnyBit() || (codesys() && ul->isInteger());
-      bool rok = ur->isAnyBit() || (codesys() && ur->isInteger());
+      bool lok = ul->isAnyBit() || (allows(DialectRule::IntegerBitString) && ul->isInteger());
+      bool rok = ur->isAnyBit() || (allows(DialectRule::IntegerBitString) && ur->isInteger());
       if (!lok || !rok) return invalid();
       return commonType(lt, rt, e->lhs, e->rhs, e->opLoc, op);
     }
     case BinaryOp::AndThen: case BinaryOp::OrElse:
       if (ul->isBool() && ur->isBool()) return boolT;
-      if (codesys() && (ul->isBool() || ul->isInteger()) && (ur->isBool() || ur->isInteger())) return boolT;
+      if (allows(DialectRule::IntegerAsBool) && (ul->isBool() || ul->isInteger()) && (ur->isBool() || ur->isInteger())) return boolT;
       return invalid();
   }
   return invalid();
@@ -1053,7 +1071,7 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
       if (a.kind != Argument::Positional) seenNamed = true;
       else if (seenNamed) orderOk = false;
     }
-    if (!codesys() || !orderOk)
+    if (!allows(DialectRule::PositionalThenNamed) || !orderOk)
       diags_.error(e->range.begin, "cannot mix positional and named arguments in the call to '" + callee + "'", "call-args").range(e->parenRange);
   }
   std::vector<Symbol*> positionalParams;
@@ -1077,7 +1095,7 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
     }
     Conv c = classify(at, pt);
     bool ok = c == Conv::Exact || (c == Conv::Widening && (isPouType(at) || at->kind == TypeKind::Struct));
-    if (codesys() && at->isString() && pt->isString() && at->kind == pt->kind) ok = true;
+    if (allows(DialectRule::StringInOutAnyLength) && at->isString() && pt->isString() && at->kind == pt->kind) ok = true;
     if (!ok)
       diags_.error(v->range.begin, "cannot pass '" + at->name + "' to VAR_IN_OUT '" + p->name + "' of type '" + pt->name + "'", "type-mismatch")
           .range(v->range).note(p->declRange.begin, "parameter declared here", p->declRange);
@@ -1086,7 +1104,7 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
     const Type* pt = p->type ? valueType(p->type) : types_.error();
     checkExpr(v, ctx, pt);
     // Arrays passed to POINTER TO parameters (CODESYS libraries do this).
-    if (codesys() && pt->isPointer() && v->type && v->type->kind == TypeKind::Array) return;
+    if (allows(DialectRule::ArrayAsPointerArgument) && pt->isPointer() && v->type && v->type->kind == TypeKind::Array) return;
     if (checkConversion(pt, v, "argument") && p->type && v->type && !v->type->isError())
       checkNoStaticCopy(p->type, v->range, "into " + std::string(p->var ? spelling(p->var->section) : "parameter") + " '" + p->name + "' of '" + callee + "'");
   };
@@ -1161,7 +1179,7 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
       if (!vt->isError() && !pt->isError()) {
         Conv c = classify(pt, valueType(vt));
         bool ok = c == Conv::Exact || c == Conv::Widening ||
-                  (codesys() && (c == Conv::IntBit || c == Conv::IntBool || c == Conv::EnumInt || c == Conv::Narrowing || c == Conv::SignChange || c == Conv::Pointer));
+                  allowsImplicit(c);
         if (!ok)
           diags_.error(a.value->range.begin, "cannot store output '" + p->name + "' of type '" + pt->name + "' in a variable of type '" +
                                                  valueType(vt)->name + "'", "type-mismatch").range(a.value->range);

@@ -60,7 +60,10 @@ public:
   SemaImpl(ASTContext& ast, DiagnosticsEngine& diags, SemaOptions opts);
   bool run();
 
-  bool codesys() const { return opts_.dialect == Dialect::Codesys; }
+  // Whether the dialect accepts a construct (DialectRules.h).
+  bool allows(DialectRule r) const { return dialectAllows(opts_.dialect, r); }
+  bool strictIec() const { return opts_.dialect == Dialect::IEC; }
+  bool allowsImplicit(Conv c) const;
 
   // ---------------------------------------------------------------- SemaDecl.cpp
   Symbol* newSymbol(Symbol::Kind k, std::string name, SourceRange r);

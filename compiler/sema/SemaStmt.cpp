@@ -65,7 +65,7 @@ void SemaImpl::checkCondition(Expr* e, const Context& ctx, const char* what) {
   if (t->isError()) return;
   if (t->isBool()) return;
   auto* lit = dyn_cast<LiteralExpr>(e);
-  if (codesys() && (t->underlying()->isInteger() || t->underlying()->isBitString())) {
+  if (allows(DialectRule::IntegerAsBool) && (t->underlying()->isInteger() || t->underlying()->isBitString())) {
     if (!(lit && lit->intValue <= 1))
       diags_.warning(e->range.begin, std::string(what) + " of type '" + t->name + "' is used as BOOL (non-zero is TRUE)", "int-bool-conversion")
           .range(e->range);
@@ -196,7 +196,7 @@ void SemaImpl::checkStmt(Stmt* s, const Context& ctx, BodyState& st) {
 void SemaImpl::checkCase(CaseStmt* s, const Context& ctx, BodyState& st) {
   const Type* sel = valueType(checkExpr(s->selector, ctx));
   const Type* u = sel->underlying();
-  bool ok = sel->isError() || u->isInteger() || sel->kind == TypeKind::Enum || (codesys() && (u->isBitString() || u->isBool()));
+  bool ok = sel->isError() || u->isInteger() || sel->kind == TypeKind::Enum || (allows(DialectRule::CaseOnBitString) && (u->isBitString() || u->isBool()));
   if (!ok) diags_.error(s->selector->range.begin, "CASE selector must be an integer or enumeration, not '" + sel->name + "'", "type-mismatch")
                .range(s->selector->range);
   struct Seen { int64_t lo, hi; SourceRange range; };

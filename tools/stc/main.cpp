@@ -329,7 +329,7 @@ int runRun(const BuildArgs& a) {
 
 void addCompileOptions(CLI::App* cmd, BuildArgs& a) {
   cmd->add_option("paths", a.paths, "Files (.st, .exp) or project directories")->required();
-  cmd->add_option("--dialect", a.dialect, "Language dialect (default: the project's, else iec)")->check(CLI::IsMember({"iec", "codesys"}));
+  cmd->add_option("--dialect", a.dialect, "Language dialect (default: the project's, else codesys)")->check(CLI::IsMember({"iec", "codesys"}));
   cmd->add_option("-D,--define", a.defines, "Define NAME for {IF defined(NAME)} pragmas")->allow_extra_args(false);
   cmd->add_option("--lib", a.libs, "Compile in an optional library (e.g. codesys_sm3)")->check(CLI::IsMember(availableLibraries()))->allow_extra_args(false);
   cmd->add_option("-O", a.opt, "Optimisation level 0-3 (-O0 .. -O3)")->check(CLI::IsMember({"0", "1", "2", "3"}));
@@ -352,7 +352,7 @@ int main(int argc, char** argv) {
   CheckArgs ca;
   CLI::App* check = app.add_subcommand("check", "Parse and analyse ST sources or project directories");
   check->add_option("paths", ca.paths, "Files (.st, .exp) or project directories")->required();
-  check->add_option("--dialect", ca.dialect, "Language dialect (default: the project's, else iec)")->check(CLI::IsMember({"iec", "codesys"}));
+  check->add_option("--dialect", ca.dialect, "Language dialect (default: the project's, else codesys)")->check(CLI::IsMember({"iec", "codesys"}));
   check->add_option("-D,--define", ca.defines, "Define NAME for {IF defined(NAME)} pragmas")->allow_extra_args(false);
   check->add_option("--lib", ca.libs, "Compile in an optional library (e.g. codesys_sm3)")->check(CLI::IsMember(availableLibraries()))->allow_extra_args(false);
   check->add_option("--format", ca.format, "Diagnostic format")->check(CLI::IsMember({"text", "json"}));
