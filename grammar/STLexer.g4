@@ -56,7 +56,6 @@ END_NAMESPACE : E N D '_' N A M E S P A C E ;
 NON_RETAIN : N O N '_' R E T A I N ;
 NOT : N O T ;
 OF : O F ;
-ON : O N ;
 OR : O R ;
 OR_ELSE : O R '_' E L S E ;
 PERSISTENT : P E R S I S T E N T ;

@@ -31,7 +31,7 @@ qualifiedName : IDENTIFIER ( DOT IDENTIFIER )* ;
 dataTypeDecl : TYPE typeDeclItem+ END_TYPE ;
 
 typeDeclItem
-    : IDENTIFIER ( EXTENDS qualifiedName )? COLON typeDefinition ( ASSIGN initializer )? SEMI*
+    : IDENTIFIER ( EXTENDS qualifiedName )? COLON typeDefinition ( ASSIGN initializerList )? SEMI*
     ;
 
 typeDefinition
@@ -116,8 +116,13 @@ globalVarBlock : VAR_GLOBAL varQualifier* varDecl* END_VAR ;
 varQualifier : CONSTANT | RETAIN | NON_RETAIN | PERSISTENT ;
 
 varDecl
-    : IDENTIFIER ( COMMA IDENTIFIER )* ( AT DIRECT_ADDRESS )? COLON typeSpec ( ASSIGN initializer? )? SEMI
+    : IDENTIFIER ( COMMA IDENTIFIER )* ( AT DIRECT_ADDRESS )? COLON typeSpec ( ASSIGN initializerList? )? SEMI
     ;
+
+// One initializer, or (CODESYS 2.3) the elements of an array without brackets:
+// `a : ARRAY[1..4] OF INT := 1, 2, 2(0);`.  One rule, so that the common case
+// needs no lookahead past the first element.
+initializerList : arrayInitElement ( COMMA arrayInitElement )* ;
 
 initializer
     : LBRACKET arrayInitElement ( COMMA arrayInitElement )* COMMA? RBRACKET    # arrayInit
@@ -137,7 +142,8 @@ configurationDecl
     : CONFIGURATION IDENTIFIER globalVarBlock* ( resourceDecl+ | resourceBody ) varConfigBlock* END_CONFIGURATION
     ;
 
-resourceDecl : RESOURCE IDENTIFIER ( ON IDENTIFIER )? resourceBody END_RESOURCE ;
+// `ON` is not a keyword (CODESYS code names variables ON): the builder checks the word.
+resourceDecl : RESOURCE IDENTIFIER ( IDENTIFIER IDENTIFIER )? resourceBody END_RESOURCE ;
 
 resourceBody : globalVarBlock* taskDecl* programConfig* ;
 
@@ -160,9 +166,9 @@ caseBody : unlabeledStatement* ;
 
 // Statements that start with an expression share one alternative; the token
 // after the expression decides (LL(1)) instead of a prediction over the whole
-// left-hand side, which keeps parsing fast.
+// left-hand side, which keeps parsing fast.  `a := b := 0` (CODESYS ExST) chains.
 unlabeledStatement
-    : lhs=expression ( op=( ASSIGN | REF_ASSIGN ) rhs=expression | sr=IDENTIFIER EQ rhs=expression )? SEMI   # exprBasedStmt
+    : lhs=expression ( op=( ASSIGN | REF_ASSIGN ) rhs=expression ( ASSIGN chain+=expression )* | sr=IDENTIFIER EQ rhs=expression )? SEMI   # exprBasedStmt
     | IF expression THEN body elsifPart* ( ELSE elseBody=body )? END_IF     # ifStmt
     | CASE expression OF caseElement* ( ELSE elseBody=body )? END_CASE      # caseStmt
     | FOR IDENTIFIER ASSIGN from=expression TO to=expression ( BY by=expression )? DO body END_FOR  # forStmt

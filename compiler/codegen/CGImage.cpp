@@ -448,7 +448,9 @@ void CodeGen::initObject(ConstBuffer& buf, uint64_t off, const Type* t, const Ex
   // No initial value: the default of a named alias type (TYPE Percent : INT := 50).
   if (!init && decl && decl->type)
     for (const TypeDecl* td = decl->type->aliasDecl; td && !init; td = td->def ? td->def->aliasDecl : nullptr)
-      if (td->init && !isa<ArrayInitExpr>(td->init) && !isa<StructInitExpr>(td->init) && !isAggregate(t)) init = td->init;
+      if (td->init && ((!isa<ArrayInitExpr>(td->init) && !isa<StructInitExpr>(td->init) && !isAggregate(t)) ||
+                       (isa<ArrayInitExpr>(td->init) && t->kind == TypeKind::Array)))   // TYPE Row : ARRAY[1..3] OF INT := [1, 2, 3]
+        init = td->init;
   if (!init) { defaultObject(buf, off, t, dyn); return; }
   if (auto* ai = dyn_cast<ArrayInitExpr>(init); ai && t->kind == TypeKind::Array) {
     if (!overlay) defaultObject(buf, off, t, dyn);

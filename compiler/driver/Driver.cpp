@@ -73,6 +73,64 @@ bool Compilation::addPath(const std::string& path) {
 }
 
 
+namespace {
+
+// Upper-case names a declaration introduces (POUs, types, globals, namespaces).
+void declaredNames(const ast::Decl* d, std::set<std::string>& out) {
+  if (auto* p = ast::dyn_cast<ast::PouDecl>(d)) {
+    if (!p->name.parts.empty()) out.insert(asciiUpper(p->name.parts.front().name));
+  } else if (auto* t = ast::dyn_cast<ast::TypeDecl>(d)) {
+    out.insert(asciiUpper(t->name.name));
+  } else if (auto* g = ast::dyn_cast<ast::GlobalVarDecl>(d)) {
+    for (const ast::VarDecl* v : g->block.vars) out.insert(asciiUpper(v->name.name));
+    if (!g->listName.name.empty()) out.insert(asciiUpper(g->listName.name));
+  } else if (auto* n = ast::dyn_cast<ast::NamespaceDecl>(d)) {
+    if (!n->name.parts.empty()) out.insert(asciiUpper(n->name.parts.front().name));
+    for (const ast::Decl* c : n->decls) declaredNames(c, out);
+  }
+}
+
+bool covers(const SourceRange& r, SourceLoc l) {
+  return r.begin.file == l.file && l.offset >= r.begin.offset && l.offset <= r.end.offset;
+}
+
+}  // namespace
+
+// Removes the top-level declarations that contain a syntax error; returns the
+// names they declared.
+std::set<std::string> dropBrokenDeclarations(ast::ASTContext& ast, const DiagnosticsEngine& diags) {
+  std::vector<SourceLoc> errors;
+  for (const Diagnostic& d : diags.diagnostics())
+    if (d.severity == Severity::Error && d.loc.valid()) errors.push_back(d.loc);
+  std::set<std::string> dropped;
+  for (ast::SourceUnit& u : ast.units()) {
+    std::vector<ast::Decl*> kept;
+    for (ast::Decl* d : u.decls) {
+      bool broken = !d->range.valid();
+      for (SourceLoc l : errors) broken = broken || covers(d->range, l);
+      if (broken) declaredNames(d, dropped);
+      else kept.push_back(d);
+    }
+    // A syntax error outside every declaration (between them) leaves no trace
+    // in the tree; the declarations around it are fine.
+    u.decls = std::move(kept);
+  }
+  return dropped;
+}
+
+// Whether a message quotes one of `names` ('X', case-insensitive).
+bool namesAny(const std::string& message, const std::set<std::string>& names) {
+  for (size_t a = message.find('\''); a != std::string::npos; a = message.find('\'', a + 1)) {
+    size_t b = message.find('\'', a + 1);
+    if (b == std::string::npos) break;
+    std::string quoted = asciiUpper(std::string_view(message).substr(a + 1, b - a - 1));
+    size_t dot = quoted.find('.');
+    if (names.count(quoted) || (dot != std::string::npos && names.count(quoted.substr(0, dot)))) return true;
+    a = b;
+  }
+  return false;
+}
+
 bool Compilation::check(const CompileOptions& opts) {
   using clock = std::chrono::steady_clock;
   dialect_ = opts.dialect ? *opts.dialect : projectDialect_ ? *projectDialect_ : sema::Dialect::Codesys;
@@ -171,9 +229,23 @@ bool Compilation::check(const CompileOptions& opts) {
   }
   auto t1 = clock::now();
   stats_.parseSeconds = std::chrono::duration<double>(t1 - t0).count();
-  if (!parsed) return false;   // semantic analysis of a broken tree only repeats the syntax errors
   sema::SemaOptions so;
   so.dialect = dialect_;
+  if (!parsed) {
+    // Like clang, go on after syntax errors: the declarations that parsed
+    // cleanly are checked, so one run reports the missing ';' and the
+    // misspelt name elsewhere.  Declarations holding a syntax error are left
+    // out, and "undeclared" errors about the names they declared are dropped.
+    std::set<std::string> dropped = dropBrokenDeclarations(*ast_, diags_);
+    DiagnosticsEngine semaDiags(sm_);
+    semaDiags.opts = diags_.opts;
+    sema_ = std::make_unique<sema::Sema>(*ast_, semaDiags, so);
+    sema_->run();
+    for (const Diagnostic& d : semaDiags.diagnostics())
+      if (!((d.code == "undeclared-name" || d.code == "unknown-type") && namesAny(d.message, dropped))) diags_.commit(d);
+    stats_.semaSeconds = std::chrono::duration<double>(clock::now() - t1).count();
+    return false;
+  }
   sema_ = std::make_unique<sema::Sema>(*ast_, diags_, so);
   bool ok = sema_->run();
   stats_.semaSeconds = std::chrono::duration<double>(clock::now() - t1).count();

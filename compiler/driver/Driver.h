@@ -88,6 +88,12 @@ private:
   CompileStats stats_;
 };
 
+// Error recovery (Driver.cpp): drops the top-level declarations holding a
+// syntax error and returns the names they declared; namesAny() tells whether
+// a message quotes one of them.
+std::set<std::string> dropBrokenDeclarations(ast::ASTContext& ast, const DiagnosticsEngine& diags);
+bool namesAny(const std::string& message, const std::set<std::string>& names);
+
 // Runs `fn` on a thread with a large stack, so that deeply nested input
 // cannot overflow it.
 void runWithLargeStack(const std::function<void()>& fn);

@@ -214,7 +214,7 @@ private:
     }
     // STRUCT EXTENDS written before the colon (CODESYS: TYPE S EXTENDS B : STRUCT).
     if (c->qualifiedName() && d->def && d->def->kind == TypeRef::Struct) d->def->structBase = qname(c->qualifiedName());
-    if (c->initializer()) d->init = initializer(c->initializer());
+    if (c->initializerList()) d->init = initializerList(c->initializerList());
     return d->def ? d : nullptr;
   }
 
@@ -488,7 +488,7 @@ private:
     std::vector<antlr4::Token*> names;
     antlr4::Token* address = nullptr;
     P::TypeSpecContext* typeCtx = nullptr;
-    P::InitializerContext* initCtx = nullptr;
+    P::InitializerListContext* initCtx = nullptr;
     bool assign = false, afterColon = false;
     for (antlr4::tree::ParseTree* ch : c->children) {
       if (isTerminal(ch)) {
@@ -502,11 +502,11 @@ private:
       }
       auto* r = static_cast<antlr4::ParserRuleContext*>(ch);
       if (r->getRuleIndex() == P::RuleTypeSpec) typeCtx = static_cast<P::TypeSpecContext*>(r);
-      else if (r->getRuleIndex() == P::RuleInitializer) initCtx = static_cast<P::InitializerContext*>(r);
+      else if (r->getRuleIndex() == P::RuleInitializerList) initCtx = static_cast<P::InitializerListContext*>(r);
     }
     TypeRef* type = typeSpec(typeCtx);
     if (!type) return;
-    Expr* init = initCtx ? initializer(initCtx) : nullptr;
+    Expr* init = initCtx ? initializerList(initCtx) : nullptr;
     std::vector<Pragma> attrs = attributesFor(c);
     for (antlr4::Token* id : names) {
       Ident name = ident(id);
@@ -533,26 +533,37 @@ private:
     }
   }
 
+  // The elements of `[ ... ]`, or of a CODESYS 2.3 list without brackets.
+  ArrayInitExpr* arrayElements(const std::vector<P::ArrayInitElementContext*>& els, SourceRange r) {
+    auto* e = ctx_.make<ArrayInitExpr>();
+    e->range = r;
+    for (auto* el : els) {
+      ArrayInitExpr::Element elem;
+      elem.range = range(el);
+      if (auto* rep = as<P::RepeatedElementContext>(el)) {
+        elem.repeated = true;
+        elem.repeat = integerValue(rep->INTEGER_LITERAL());
+        elem.value = rep->initializer() ? initializer(rep->initializer()) : nullptr;
+      } else if (auto* s = as<P::SingleElementContext>(el)) {
+        elem.value = initializer(s->initializer());
+        if (!elem.value) continue;
+      }
+      e->elements.push_back(elem);
+    }
+    return e;
+  }
+
+  Expr* initializerList(P::InitializerListContext* c) {
+    if (!c) return nullptr;
+    auto els = c->arrayInitElement();
+    if (els.size() == 1)
+      if (auto* s = as<P::SingleElementContext>(els[0])) return initializer(s->initializer());
+    return arrayElements(els, range(c));
+  }
+
   Expr* initializer(P::InitializerContext* c) {
     if (!c) return nullptr;
-    if (auto* a = as<P::ArrayInitContext>(c)) {
-      auto* e = ctx_.make<ArrayInitExpr>();
-      e->range = range(a);
-      for (auto* el : a->arrayInitElement()) {
-        ArrayInitExpr::Element elem;
-        elem.range = range(el);
-        if (auto* r = as<P::RepeatedElementContext>(el)) {
-          elem.repeated = true;
-          elem.repeat = integerValue(r->INTEGER_LITERAL());
-          elem.value = r->initializer() ? initializer(r->initializer()) : nullptr;
-        } else if (auto* s = as<P::SingleElementContext>(el)) {
-          elem.value = initializer(s->initializer());
-          if (!elem.value) continue;
-        }
-        e->elements.push_back(elem);
-      }
-      return e;
-    }
+    if (auto* a = as<P::ArrayInitContext>(c)) return arrayElements(a->arrayInitElement(), range(a));
     if (auto* s = as<P::StructInitContext>(c)) {
       auto* e = ctx_.make<StructInitExpr>();
       e->range = range(s);
@@ -577,9 +588,14 @@ private:
     for (auto* r : c->resourceDecl()) {
       ResourceDecl res;
       res.range = range(r);
-      auto ids = r->IDENTIFIER();
+      auto ids = r->IDENTIFIER();   // name ( ON target )?
       if (!ids.empty()) res.name = ident(ids[0]);
-      if (ids.size() > 1) res.on = ident(ids[1]);
+      if (ids.size() > 2) {
+        if (!equalsIgnoreCase(text(ids[1]), "ON"))
+          diags_.error(loc(ids[1]->getSymbol()), "expected 'ON' after the resource name, found '" + std::string(text(ids[1])) + "'", "syntax")
+              .range(range(ids[1]));
+        res.on = ident(ids[2]);
+      }
       if (r->resourceBody()) resourceBody(r->resourceBody(), res);
       d->resources.push_back(std::move(res));
     }
@@ -654,6 +670,8 @@ private:
       Stmt* st = unlabeled(static_cast<P::UnlabeledStatementContext*>(r));
       if (!labels.empty()) st = wrap(st, r->getStop());
       if (st) out.push_back(st);
+      out.insert(out.end(), chained_.begin(), chained_.end());
+      chained_.clear();
     }
     if (!labels.empty()) {
       // A label at the end of a body labels an empty statement.
@@ -663,6 +681,34 @@ private:
       out.push_back(wrap(empty, last));
     }
     return out;
+  }
+
+  // `e0 := e1 := ... := v` (CODESYS ExST: an assignment is an expression with
+  // the assigned value).  Lowered to `e_n-1 := v; ...; e0 := e1;`, each target
+  // reading the one assigned before it, so conversions apply at every step as
+  // CODESYS does; the statements after the first wait in chained_.
+  Stmt* chainedAssignment(AssignStmt* first, P::ExprBasedStmtContext* a) {
+    if (first->op != AssignStmt::Normal) {
+      diags_.error(loc(a->chain[0]->getStart()), "'REF=' cannot be chained", "syntax").range(range(a->chain[0]));
+      return first;
+    }
+    // Each target is built again from the parse tree where it is read, so
+    // that no AST node has two parents.
+    std::vector<P::ExpressionContext*> parts{a->lhs, a->rhs};
+    parts.insert(parts.end(), a->chain.begin(), a->chain.end());
+    std::vector<AssignStmt*> out;
+    for (size_t i = parts.size() - 1; i > 0; --i) {
+      auto* s = ctx_.make<AssignStmt>();
+      s->range = first->range;
+      s->opLoc = first->opLoc;
+      s->op = AssignStmt::Normal;
+      s->lhs = expr(parts[i - 1]);
+      s->rhs = expr(parts[i]);
+      if (!s->lhs || !s->rhs) return nullptr;
+      out.push_back(s);
+    }
+    chained_.insert(chained_.end(), out.begin() + 1, out.end());
+    return out.front();
   }
 
   Stmt* unlabeled(P::UnlabeledStatementContext* c) {
@@ -684,6 +730,7 @@ private:
       if (a->op) {
         s->opLoc = loc(a->op);
         s->op = a->op->getType() == STLexer::REF_ASSIGN ? AssignStmt::Ref : AssignStmt::Normal;
+        if (!a->chain.empty()) return chainedAssignment(s, a);
         return s;
       }
       if (!a->sr) return nullptr;
@@ -733,7 +780,11 @@ private:
         }
         if (el->caseBody())
           for (auto* u : el->caseBody()->unlabeledStatement())
-            if (Stmt* st = unlabeled(u)) e.body.push_back(st);
+            if (Stmt* st = unlabeled(u)) {
+              e.body.push_back(st);
+              e.body.insert(e.body.end(), chained_.begin(), chained_.end());
+              chained_.clear();
+            }
         s->elements.push_back(std::move(e));
       }
       if (k->elseBody) {
@@ -1237,6 +1288,7 @@ private:
   const LexedFile& lexed_;
   DiagnosticsEngine& diags_;
   ASTContext& ctx_;
+  std::vector<Stmt*> chained_;   // statements of a chained assignment after the first
 };
 
 }  // namespace

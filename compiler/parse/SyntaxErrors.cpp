@@ -204,6 +204,10 @@ protected:
     std::vector<size_t> types;
     for (const antlr4::misc::Interval& iv : set.getIntervals())
       for (ssize_t t = iv.a; t <= iv.b; ++t) types.push_back(static_cast<size_t>(t));
+    // After `x := 4` the grammar also takes ':=' (a chained assignment), but
+    // the ';' is what was forgotten.
+    if (types.size() == 2 && std::count(types.begin(), types.end(), STLexer::SEMI) && std::count(types.begin(), types.end(), STLexer::ASSIGN))
+      types = {STLexer::SEMI};
     bool anyNonOp = std::any_of(types.begin(), types.end(), [](size_t t) { return !isOperatorToken(t); });
     bool expr = std::any_of(types.begin(), types.end(), startsExpression);
     std::vector<std::string> names;

@@ -787,11 +787,17 @@ void SemaImpl::resolveSignature(Symbol* pou) {
     }
   }
 
-  // Variables.
+  // Variables.  Scalar VAR CONSTANTs come first: CODESYS lets an array bound or
+  // a STRING length name a constant declared further down in the same POU.
   bool isFunction = pou->kind == Symbol::Function;
+  auto earlyConstant = [](const VarDecl* v) {
+    return v->isConstant && v->section == VarSection::Var && v->type && v->type->kind == TypeRef::Named;
+  };
+  for (int pass = 0; pass < 2; ++pass)
   for (VarBlock& b : d->varBlocks) {
     bool sectionReported = false;
     for (VarDecl* v : b.vars) {
+      if (earlyConstant(v) != (pass == 0)) continue;
       if (sectionReported) goto declareVar;
       switch (v->section) {
         case VarSection::Global:

@@ -1003,6 +1003,10 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
         if (lt->kind == TypeKind::Enum && rt->kind == TypeKind::Enum && lt == rt) return boolT;
         return invalid();
       }
+      // CODESYS: pointers order like the addresses they hold (`WHILE p < pEnd`), also against integers.
+      if (!eq && allows(DialectRule::PointerConversions) && (ul->isPointer() || ur->isPointer()) &&
+          (ul->isPointer() || ul->isInteger() || ul->isBitString()) && (ur->isPointer() || ur->isInteger() || ur->isBitString()))
+        return boolT;
       if (eq) {
         bool lp = ul->isPointer() || ul->kind == TypeKind::Interface || ul->isReference();
         bool rp = ur->isPointer() || ur->kind == TypeKind::Interface || ur->isReference();
