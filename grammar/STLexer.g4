@@ -38,8 +38,9 @@ FINAL : F I N A L ;
 FOR : F O R ;
 FUNCTION : F U N C T I O N ;
 END_FUNCTION : E N D '_' F U N C T I O N ;
-FUNCTION_BLOCK : F U N C T I O N '_' B L O C K ;
-END_FUNCTION_BLOCK : E N D '_' F U N C T I O N '_' B L O C K ;
+// FUNCTIONBLOCK / END_FUNCTIONBLOCK: the spelling of some CoDeSys 2.3 exports.
+FUNCTION_BLOCK : F U N C T I O N '_'? B L O C K ;
+END_FUNCTION_BLOCK : E N D '_' F U N C T I O N '_'? B L O C K ;
 END_GET : E N D '_' G E T ;
 END_SET : E N D '_' S E T ;
 IF : I F ;

@@ -23,12 +23,20 @@ const std::unordered_map<std::string, size_t>& keywords(antlr4::TokenSource* lex
     const antlr4::dfa::Vocabulary& v = static_cast<STLexer*>(lexer)->getVocabulary();
     // Keyword tokens are the leading run of the vocabulary up to XOR.
     for (size_t t = 1; t <= STLexer::XOR; ++t) m.emplace(v.getSymbolicName(t), t);
+    // Spellings of CoDeSys 2.3 exports (the same tokens in STLexer.g4).
+    m.emplace("FUNCTIONBLOCK", STLexer::FUNCTION_BLOCK);
+    m.emplace("END_FUNCTIONBLOCK", STLexer::END_FUNCTION_BLOCK);
     return m;
   }();
   return kw;
 }
 
 }  // namespace
+
+size_t keywordTokenTypeOf(const std::string& upper) {
+  auto it = keywords().find(upper);
+  return it == keywords().end() ? 0 : it->second;
+}
 
 FastLexer::FastLexer(const std::string& text, antlr4::TokenSource* source, antlr4::CharStream* stream)
     : t_(text), source_({source, stream}) {

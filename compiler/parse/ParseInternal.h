@@ -125,12 +125,21 @@ struct LexedFile {
   }
 };
 
+// Blanks the non-ST trailer sections of CoDeSys 2.3 exports (LIBRARY ...
+// END_LIBRARY, PLC_CONFIGURATION ... PLC_END, ...) with a note each.
+void skipExportSections(SourceFile& file, DiagnosticsEngine& diags);
+
 // Rewrites full-width punctuation to ASCII in place (warning + fix-it).
 void normalizeFullWidth(SourceFile& file, DiagnosticsEngine& diags);
 
 // Lexes, drops trivia, reports bad characters, unterminated comments and
 // strings, evaluates pragmas and conditional compilation.
 void lexFile(const SourceFile& file, DiagnosticsEngine& diags, const ParseOptions& opts, LexedFile& out);
+
+// Repairs misspelt declaration keywords before parsing (SyntaxErrors.cpp).
+void repairDeclarationKeywordTypos(const SourceFile& file, LexedFile& lexed, DiagnosticsEngine& diags);
+// The token type of an upper-case keyword, or 0 (FastLexer.cpp; valid once a file was lexed).
+size_t keywordTokenTypeOf(const std::string& upper);
 
 // Builds the AST of one compilation unit.
 void buildAST(STParser::CompilationUnitContext* cu, const SourceFile& file, const LexedFile& lexed,

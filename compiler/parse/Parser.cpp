@@ -58,12 +58,14 @@ bool parseFile(SourceManager& sm, uint32_t fileId, DiagnosticsEngine& diags, ast
     auto secondsSince = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
     auto t0 = clock::now();
     normalizeFullWidth(file, diags);
+    skipExportSections(file, diags);
     LexedFile lexed;
     lexFile(file, diags, opts, lexed);
     if (stats) stats->lexSeconds += secondsSince(t0);
     auto t1 = clock::now();
     if (stats) stats->tokens += lexed.tokens.size();
     if (!checkNesting(file, lexed, diags)) return false;
+    repairDeclarationKeywordTypos(file, lexed, diags);
 
     // ListTokenSource takes the tokens; keep raw pointers for the builder's
     // attribute lookups (only offsets are needed, which live in lexed).

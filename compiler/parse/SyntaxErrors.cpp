@@ -13,6 +13,7 @@
 // what is left.  Valid code never gets here (it parses in the SLL stage).
 #include <algorithm>
 #include <cctype>
+#include <set>
 
 #include "parse/ParseInternal.h"
 
@@ -115,6 +116,7 @@ size_t keywordTokenType(const std::string& kw, const antlr4::dfa::Vocabulary& v)
     if (v.getSymbolicName(t) == kw) return t;
   return 0;
 }
+
 
 // Where the parser stood when it reported an error (used by the repairs).
 struct ErrorPoint {
@@ -681,6 +683,39 @@ private:
 STParser::CompilationUnitContext* parseWithRecovery(STParser& parser, TokenEditStream& stream, const SourceFile& file,
                                                     const LexedFile& lexed, DiagnosticsEngine& diags) {
   return Repairer(parser, stream, file, lexed, diags).parse();
+}
+
+// Misspelt declaration keywords (`FUNCTION_BLOK F1` ... `END_FUNCTION_BLOK`)
+// are repaired before parsing, each with its error: otherwise the first one
+// derails the parser and the later ones go unreported.  Only where no
+// statement could start: a POU keyword followed by a name on its line, an
+// END_/VAR_ keyword alone on its line.
+void repairDeclarationKeywordTypos(const SourceFile& file, LexedFile& lexed, DiagnosticsEngine& diags) {
+  static const std::set<std::string> kBegin = {"FUNCTION_BLOCK", "FUNCTION", "PROGRAM", "METHOD", "INTERFACE"};
+  static const std::set<std::string> kAlone = {"END_FUNCTION_BLOCK", "END_FUNCTION", "END_PROGRAM", "END_METHOD", "END_VAR", "VAR_INPUT",
+                                               "VAR_OUTPUT", "VAR_IN_OUT", "VAR_TEMP", "VAR_STAT", "END_TYPE", "END_STRUCT", "END_INTERFACE"};
+  auto& toks = lexed.tokens;
+  auto newlineBetween = [&](size_t a, size_t b) {   // b > a; offsets of the token ends/starts
+    return file.text.find('\n', a) < b;
+  };
+  for (size_t i = 0; i + 1 < toks.size(); ++i) {
+    antlr4::Token* t = toks[i].get();
+    if (t->getType() != STLexer::IDENTIFIER) continue;
+    bool lineStart = i == 0 || newlineBetween(toks[i - 1]->getStopIndex() + 1, t->getStartIndex());
+    if (!lineStart) continue;
+    std::string written(file.text.substr(t->getStartIndex(), t->getStopIndex() + 1 - t->getStartIndex()));
+    std::string kw = keywordTypo(written);
+    if (kw.empty()) continue;
+    antlr4::Token* n = toks[i + 1].get();
+    bool nextOnLine = n->getType() != antlr4::Token::EOF && !newlineBetween(t->getStopIndex() + 1, n->getStartIndex());
+    bool fits = kBegin.count(kw) ? (nextOnLine && n->getType() == STLexer::IDENTIFIER)
+                                 : kAlone.count(kw) && (!nextOnLine || n->getType() == STLexer::SEMI);
+    size_t type = fits ? keywordTokenTypeOf(kw) : 0;
+    if (!type) continue;
+    SourceRange r = rangeOf(file.id, t);
+    diags.error(r.begin, "unknown keyword '" + written + "'; did you mean '" + kw + "'?", "syntax").range(r).fixit(r, kw);
+    if (auto* ct = dynamic_cast<antlr4::CommonToken*>(t)) ct->setType(type);
+  }
 }
 
 }  // namespace stc::parse
