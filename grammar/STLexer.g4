@@ -101,6 +101,9 @@ VAR_STAT : V A R '_' S T A T ;
 VAR_TEMP : V A R '_' T E M P ;
 END_VAR : E N D '_' V A R ;
 WHILE : W H I L E ;
+// R_EDGE / F_EDGE: input qualifiers (IEC keywords).
+R_EDGE : R '_' E D G E ;
+F_EDGE : F '_' E D G E ;
 WITH : W I T H ;
 XOR : X O R ;
 

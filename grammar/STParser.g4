@@ -116,8 +116,9 @@ globalVarBlock : VAR_GLOBAL varQualifier* varDecl* END_VAR ;
 varQualifier : CONSTANT | RETAIN | NON_RETAIN | PERSISTENT ;
 
 varDecl
-    : IDENTIFIER ( COMMA IDENTIFIER )* ( AT DIRECT_ADDRESS )? COLON typeSpec ( ASSIGN initializerList? )? SEMI
+    : IDENTIFIER ( COMMA IDENTIFIER )* ( AT DIRECT_ADDRESS )? COLON typeSpec edge=( R_EDGE | F_EDGE )? ( ASSIGN initializerList? | REF_ASSIGN refInit=expression )? SEMI
     ;
+// REF= x binds a REFERENCE TO variable at its declaration (CODESYS).
 
 // One initializer, or (CODESYS 2.3) the elements of an array without brackets:
 // `a : ARRAY[1..4] OF INT := 1, 2, 2(0);`.  One rule, so that the common case

@@ -321,6 +321,8 @@ struct VarDecl : Node {
   SourceRange addressRange;
   VarSection section = VarSection::Var;
   bool isConstant = false, isRetain = false, isPersistent = false, isNonRetain = false;
+  enum Edge : uint8_t { NoEdge, RisingEdge, FallingEdge } edge = NoEdge;   // VAR_INPUT x : BOOL R_EDGE
+  bool bindsReference = false;   // `r : REFERENCE TO T REF= x` (or := x): init is the bound variable
   std::vector<Pragma> attributes;
   // Filled by sema.
   const sema::Type* resolvedType = nullptr;

@@ -450,6 +450,11 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
       x = b_.CreateUnaryIntrinsic(llvm::Intrinsic::bswap, x);
       return ty->isIntegerTy() ? x : b_.CreateBitCast(x, ty);
     }
+    case sema::FIsValidRef: {
+      Address slot = referenceSlot(argExpr(0));
+      if (!slot.ptr) return unsupported();
+      return b_.CreateIsNotNull(b_.CreateAlignedLoad(ptrTy_, slot.ptr, llvm::MaybeAlign(8)));
+    }
     case sema::FBitAdr: {
       // The bit address of a variable located in the process image.
       const Expr* a = argExpr(0);

@@ -280,7 +280,7 @@ void CodeGen::buildImage() {
   FnState st;
   beginFunction(st, f);
   st.returnBlock = llvm::BasicBlock::Create(ctx_, "return", f);
-  for (const DynamicInit& d : imageDynamic_) assign(Address{imageAddr(d.offset), d.type}, d.expr);
+  for (const DynamicInit& d : imageDynamic_) emitDynamicInit(imageAddr(0), d);
   if (blockOpen()) b_.CreateBr(st.returnBlock);
   b_.SetInsertPoint(st.returnBlock);
   b_.CreateRetVoid();
@@ -378,10 +378,13 @@ bool CodeGen::foldScalar(const Expr* e, const Type* to, llvm::Constant*& out) {
   beginFunction(st, foldFn_);
   st.returnBlock = b_.GetInsertBlock();
   unsigned errorsBefore = errors_;
+  ++folding_;
   llvm::Value* v = emitValue(e, to);
+  --folding_;
   auto* c = llvm::dyn_cast_or_null<llvm::Constant>(v);
-  bool ok = c && errors_ == errorsBefore && !llvm::isa<llvm::GlobalValue>(c->stripPointerCasts()) ? true : c != nullptr;
+  bool ok = c != nullptr && errors_ == errorsBefore;
   if (ok) out = c;
+  errors_ = errorsBefore;
   foldFn_->dropAllReferences();
   while (!foldFn_->empty()) foldFn_->begin()->eraseFromParent();
   fs_ = savedFs;
@@ -416,7 +419,7 @@ void CodeGen::defaultObject(ConstBuffer& buf, uint64_t off, const Type* t, std::
       for (uint64_t i = 0; i < count; ++i) {
         std::copy(one.bytes.begin(), one.bytes.end(), buf.bytes.begin() + static_cast<long>(off + i * stride));
         for (auto& [o, c] : one.relocs) buf.relocs[off + i * stride + o] = c;
-        for (const DynamicInit& d : oneDyn) dyn.push_back({off + i * stride + d.offset, d.type, d.expr});
+        for (const DynamicInit& d : oneDyn) dyn.push_back(d.shifted(off + i * stride));
       }
       return;
     }
@@ -429,12 +432,21 @@ void CodeGen::defaultObject(ConstBuffer& buf, uint64_t off, const Type* t, std::
       }
       const sema::TypeLayout& l = layout_.of(t);
       if (l.hasVptr) buf.relocs[off] = vtableFor(t);
+      size_t firstDyn = dyn.size();
       for (const sema::FieldLayout& f : l.fields) {
         if (!f.type || f.indirect) continue;
         if (f.decl) initObject(buf, off + f.offset, f.type, f.decl->init, dyn, f.decl);
         else defaultObject(buf, off + f.offset, f.type, dyn);
         if (t->kind == TypeKind::Union) break;   // the first member decides
       }
+      // Initial values inside an FB or program may name its other variables
+      // (`p : POINTER TO INT := ADR(x)`, `r : REFERENCE TO INT REF= x`).
+      if (t->kind == TypeKind::FunctionBlock || t->kind == TypeKind::Program)
+        for (size_t k = firstDyn; k < dyn.size(); ++k)
+          if (dyn[k].ownerOffset < 0) {
+            dyn[k].ownerOffset = static_cast<int64_t>(off);
+            dyn[k].ownerType = t;
+          }
       return;
     }
     default:
@@ -445,6 +457,10 @@ void CodeGen::defaultObject(ConstBuffer& buf, uint64_t off, const Type* t, std::
 void CodeGen::initObject(ConstBuffer& buf, uint64_t off, const Type* t, const Expr* init, std::vector<DynamicInit>& dyn, const VarDecl* decl,
                          bool overlay) {
   if (!t) return;
+  if (init && decl && decl->bindsReference) {
+    dyn.push_back({off, t, init, true});
+    return;
+  }
   // No initial value: the default of a named alias type (TYPE Percent : INT := 50).
   if (!init && decl && decl->type)
     for (const TypeDecl* td = decl->type->aliasDecl; td && !init; td = td->def ? td->def->aliasDecl : nullptr)
@@ -492,8 +508,27 @@ void CodeGen::initObject(ConstBuffer& buf, uint64_t off, const Type* t, const Ex
   else dyn.push_back({off, t, init});
 }
 
+// One initial value that runs as code; `base` is where offsets count from.
+void CodeGen::emitDynamicInit(llvm::Value* base, const DynamicInit& d) {
+  llvm::Value* savedSelf = fs_->self;
+  const Type* savedType = fs_->selfType;
+  if (d.ownerOffset >= 0) {
+    fs_->self = b_.CreateConstInBoundsGEP1_64(i8_, base, static_cast<uint64_t>(d.ownerOffset));
+    fs_->selfType = d.ownerType;
+  }
+  llvm::Value* at = b_.CreateConstInBoundsGEP1_64(i8_, base, d.offset);
+  if (d.bind) b_.CreateAlignedStore(referenceTarget(d.expr), at, llvm::MaybeAlign(8));
+  else assign(Address{at, d.type}, d.expr);
+  fs_->self = savedSelf;
+  fs_->selfType = savedType;
+}
+
 void CodeGen::initAt(Address dst, const Expr* init, const VarDecl* decl) {
   const Type* t = dst.type;
+  if (init && decl && decl->bindsReference) {
+    b_.CreateAlignedStore(referenceTarget(init), dst.ptr, llvm::MaybeAlign(8));
+    return;
+  }
   if (!isAggregate(t) && init && !isa<ArrayInitExpr>(init) && !isa<StructInitExpr>(init)) {
     assign(dst, init);
     return;
@@ -525,7 +560,7 @@ void CodeGen::initAt(Address dst, const Expr* init, const VarDecl* decl) {
     g->setAlignment(llvm::Align(std::max<uint64_t>(alignOf(t), 1)));
     b_.CreateMemCpy(dst.ptr, llvm::MaybeAlign(alignOf(t)), g, llvm::MaybeAlign(alignOf(t)), size);
   }
-  for (const DynamicInit& d : dyn) assign(Address{b_.CreateConstInBoundsGEP1_64(i8_, dst.ptr, d.offset), d.type}, d.expr);
+  for (const DynamicInit& d : dyn) emitDynamicInit(dst.ptr, d);
 }
 
 // ------------------------------------------------------------------ vtables

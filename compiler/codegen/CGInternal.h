@@ -56,6 +56,15 @@ struct DynamicInit {
   uint64_t offset;
   const Type* type;
   const ast::Expr* expr;
+  bool bind = false;                  // REFERENCE TO bound at its declaration: store expr's address
+  int64_t ownerOffset = -1;           // the FB/program instance whose variables expr may name
+  const Type* ownerType = nullptr;
+  DynamicInit shifted(uint64_t by) const {
+    DynamicInit d = *this;
+    d.offset += by;
+    if (d.ownerOffset >= 0) d.ownerOffset += static_cast<int64_t>(by);
+    return d;
+  }
 };
 
 struct FnState {
@@ -118,6 +127,10 @@ public:
   llvm::Constant* bufferConstant(const ConstBuffer& buf, llvm::Type** tyOut = nullptr);
   // Initialises memory at run time: constant part copied, the rest computed.
   void initAt(Address dst, const ast::Expr* init, const ast::VarDecl* decl = nullptr);
+  void emitDynamicInit(llvm::Value* base, const DynamicInit& d);
+  int folding_ = 0;   // inside foldScalar: errors mean "not a constant", not a diagnostic
+  Address referenceSlot(const ast::Expr* e);
+  llvm::Value* referenceTarget(const ast::Expr* e);
   llvm::Value* imageAddr(uint64_t off);
   std::string literalBytes(const ast::LiteralExpr* lit, bool wide) const;
   llvm::Constant* vtableFor(const Type* fb);

@@ -81,29 +81,9 @@ void CodeGen::emitStmt(const Stmt* s) {
       auto* a = cast<AssignStmt>(s);
       if (a->op == AssignStmt::Ref) {
         // REF= stores an address into the reference itself.
-        Address slot;
-        if (auto* n = dyn_cast<NameExpr>(a->lhs); n && n->symbol && n->symbol->var) {
-          Symbol* sym = n->symbol->aliasOf ? n->symbol->aliasOf : n->symbol;
-          // Locate the reference variable without dereferencing it.
-          const Type* saved = sym->var->resolvedType;
-          (void)saved;
-          Address full;
-          if (fs_->localDecls.count(sym->var)) full = fs_->localDecls[sym->var];
-          else if (imageOffsets_.count(sym->var)) full = Address{imageAddr(imageOffsets_[sym->var]), sym->var->resolvedType};
-          else if (fs_->self && fs_->selfType)
-            if (const sema::FieldLayout* f = layout_.field(fs_->selfType, sym->var))
-              full = Address{b_.CreateConstInBoundsGEP1_64(i8_, fs_->self, f->offset), f->type};
-          slot = full;
-        } else if (auto* m = dyn_cast<MemberExpr>(a->lhs); m && m->symbol && m->symbol->var) {
-          const Type* bt = strip(m->base->type);
-          if (const sema::FieldLayout* f = layout_.field(bt, m->symbol->var))
-            slot = Address{b_.CreateConstInBoundsGEP1_64(i8_, instancePtr(m->base), f->offset), f->type};
-        }
+        Address slot = referenceSlot(a->lhs);
         if (!slot.ptr) { error(a->lhs->range, "REF= needs a reference variable"); return; }
-        llvm::Value* target;
-        if (auto* lit = dyn_cast<LiteralExpr>(a->rhs); lit && lit->litKind == LiteralExpr::Int) target = llvm::ConstantPointerNull::get(ptrTy_);
-        else if (a->rhs->type && (a->rhs->type->isPointer() || a->rhs->type->kind == TypeKind::Null)) target = emitValue(a->rhs, nullptr);
-        else target = emitAddr(a->rhs).ptr;
+        llvm::Value* target = referenceTarget(a->rhs);
         b_.CreateAlignedStore(target, slot.ptr, llvm::MaybeAlign(8));
         return;
       }
@@ -432,6 +412,36 @@ void CodeGen::emitCase(const CaseStmt* s) {
   emitStmts(s->elseBody);
   if (blockOpen()) b_.CreateBr(done);
   b_.SetInsertPoint(done);
+}
+
+// The storage of a REFERENCE TO variable itself (not of what it refers to),
+// or a null Address when `e` does not name one.
+Address CodeGen::referenceSlot(const Expr* e) {
+  if (auto* n = dyn_cast<NameExpr>(e); n && n->symbol && n->symbol->var) {
+    const Symbol* sym = n->symbol->aliasOf ? n->symbol->aliasOf : n->symbol;
+    if (!sym->var->resolvedType || !sym->var->resolvedType->isReference()) return {};
+    if (fs_->localDecls.count(sym->var)) return fs_->localDecls[sym->var];
+    if (imageOffsets_.count(sym->var)) return Address{imageAddr(imageOffsets_[sym->var]), sym->var->resolvedType};
+    if (fs_->self && fs_->selfType)
+      if (const sema::FieldLayout* f = layout_.field(fs_->selfType, sym->var))
+        return Address{b_.CreateConstInBoundsGEP1_64(i8_, fs_->self, f->offset), f->type};
+  } else if (auto* m = dyn_cast<MemberExpr>(e); m && m->symbol && m->symbol->var) {
+    if (!m->symbol->var->resolvedType || !m->symbol->var->resolvedType->isReference()) return {};
+    const Type* bt = strip(m->base->type);
+    if (const sema::FieldLayout* f = layout_.field(bt, m->symbol->var))
+      return Address{b_.CreateConstInBoundsGEP1_64(i8_, instancePtr(m->base), f->offset), f->type};
+  }
+  return {};
+}
+
+// The address a reference is bound to by `REF= e` (or at its declaration):
+// 0 is null, a pointer its value, another reference its binding (copied as
+// is, also when unbound), anything else the variable's address.
+llvm::Value* CodeGen::referenceTarget(const Expr* e) {
+  if (auto* lit = dyn_cast<LiteralExpr>(e); lit && lit->litKind == LiteralExpr::Int) return llvm::ConstantPointerNull::get(ptrTy_);
+  if (e->type && (e->type->isPointer() || e->type->kind == TypeKind::Null)) return emitValue(e, nullptr);
+  if (Address slot = referenceSlot(e); slot.ptr) return b_.CreateAlignedLoad(ptrTy_, slot.ptr, llvm::MaybeAlign(8));
+  return emitAddr(e).ptr;
 }
 
 }  // namespace stc::codegen

@@ -49,6 +49,7 @@ CodeGen::CodeGen(const sema::Model& model, const SourceManager& sm, DiagnosticsE
 
 void CodeGen::error(SourceRange r, const std::string& msg) {
   ++errors_;
+  if (folding_) return;   // a failed fold attempt: the value is computed at run time instead
   diags_.error(r.begin, msg, "codegen").range(r);
 }
 

@@ -300,6 +300,73 @@ private:
     for (auto* b : blocks) d->varBlocks.push_back(varBlock(b));
   }
 
+  // VAR_INPUT x : BOOL R_EDGE (F_EDGE): inside the block, x is TRUE only in
+  // the call where the value passed rose (fell).  Lowered to two hidden
+  // instance variables and three statements in front of the body:
+  //   __x_in := x;  x := __x_in AND NOT __x_prev;  __x_prev := __x_in;
+  // (F_EDGE: x := NOT __x_in AND __x_prev).
+  void lowerEdgeInputs(PouDecl* d) {
+    std::vector<Stmt*> front;
+    VarBlock hidden;
+    hidden.section = VarSection::Var;
+    for (VarBlock& b : d->varBlocks)
+      for (VarDecl* v : b.vars) {
+        if (v->edge == VarDecl::NoEdge) continue;
+        SourceRange r = v->name.range;
+        auto hiddenVar = [&](const std::string& suffix) {
+          auto* h = ctx_.make<VarDecl>();
+          h->range = r;
+          h->name = Ident{"__" + v->name.name + suffix, r};
+          auto* t = ctx_.make<TypeRef>(TypeRef::Named);
+          t->range = r;
+          t->name.parts.push_back(Ident{"BOOL", r});
+          t->name.range = r;
+          h->type = t;
+          h->section = VarSection::Var;
+          h->used = true;
+          h->attributes.push_back(Pragma{"hide", "", r});
+          hidden.vars.push_back(h);
+          return h->name.name;
+        };
+        std::string in = hiddenVar("_edge_in"), prev = hiddenVar("_edge_prev");
+        auto name = [&](const std::string& n) {
+          auto* e = ctx_.make<NameExpr>();
+          e->range = r;
+          e->ident = Ident{n, r};
+          return e;
+        };
+        auto assign = [&](Expr* lhs, Expr* rhs) {
+          auto* s = ctx_.make<AssignStmt>();
+          s->range = r;
+          s->opLoc = r.begin;
+          s->lhs = lhs;
+          s->rhs = rhs;
+          front.push_back(s);
+        };
+        auto notOf = [&](Expr* x) {
+          auto* u = ctx_.make<UnaryExpr>();
+          u->range = r;
+          u->op = UnaryOp::Not;
+          u->operand = x;
+          u->opLoc = r.begin;
+          return u;
+        };
+        auto* both = ctx_.make<BinaryExpr>();
+        both->range = r;
+        both->op = BinaryOp::And;
+        both->opLoc = r.begin;
+        bool rising = v->edge == VarDecl::RisingEdge;
+        both->lhs = rising ? static_cast<Expr*>(name(in)) : notOf(name(in));
+        both->rhs = rising ? static_cast<Expr*>(notOf(name(prev))) : name(prev);
+        assign(name(in), name(v->name.name));
+        assign(name(v->name.name), both);
+        assign(name(prev), name(in));
+      }
+    if (front.empty()) return;
+    d->varBlocks.push_back(std::move(hidden));
+    d->body.insert(d->body.begin(), front.begin(), front.end());
+  }
+
   PouDecl* pou(P::PouDeclContext* c) {
     if (!c->kind) return nullptr;
     auto* d = ctx_.make<PouDecl>();
@@ -322,6 +389,7 @@ private:
     varBlocks(c->varBlock(), d);
     for (auto* m : c->pouMember()) member(m, d);
     if (c->body()) d->body = body(c->body());
+    lowerEdgeInputs(d);
     if (c->endKw) d->endRange = range(c->endKw);
     // END_xxx must match the opening keyword.
     if (c->endKw && conjured(c->endKw)) {
@@ -489,12 +557,14 @@ private:
     antlr4::Token* address = nullptr;
     P::TypeSpecContext* typeCtx = nullptr;
     P::InitializerListContext* initCtx = nullptr;
+    antlr4::Token* edge = nullptr;
     bool assign = false, afterColon = false;
     for (antlr4::tree::ParseTree* ch : c->children) {
       if (isTerminal(ch)) {
         antlr4::Token* t = sameType<antlr4::tree::TerminalNodeImpl>(typeid(*ch)) ? static_cast<antlr4::tree::TerminalNode*>(ch)->getSymbol() : nullptr;
         if (!t) continue;
         if (t->getType() == STLexer::IDENTIFIER && !afterColon) names.push_back(t);
+        else if (t->getType() == STLexer::R_EDGE || t->getType() == STLexer::F_EDGE) edge = t;
         else if (t->getType() == STLexer::DIRECT_ADDRESS) address = t;
         else if (t->getType() == STLexer::COLON) afterColon = true;
         else if (t->getType() == STLexer::ASSIGN) assign = true;
@@ -507,6 +577,17 @@ private:
     TypeRef* type = typeSpec(typeCtx);
     if (!type) return;
     Expr* init = initCtx ? initializerList(initCtx) : nullptr;
+    bool refBind = false;
+    if (c->refInit) {
+      init = expr(c->refInit);
+      refBind = true;
+    }
+    VarDecl::Edge edgeKind = VarDecl::NoEdge;
+    if (edge) {
+      edgeKind = edge->getType() == STLexer::R_EDGE ? VarDecl::RisingEdge : VarDecl::FallingEdge;
+      if (edgeKind != VarDecl::NoEdge && section != VarSection::Input)
+        diags_.error(loc(edge), std::string(text(edge)) + " is only allowed on VAR_INPUT variables", "invalid-section").range(range(edge));
+    }
     std::vector<Pragma> attrs = attributesFor(c);
     for (antlr4::Token* id : names) {
       Ident name = ident(id);
@@ -517,6 +598,8 @@ private:
       v->type = type;
       v->init = init;
       v->hasEmptyInit = assign && !initCtx;
+      v->bindsReference = refBind;
+      v->edge = edgeKind;
       v->section = section;
       v->attributes = attrs;
       if (address) {

@@ -157,6 +157,7 @@ void SemaImpl::registerBuiltins() {
   add("ADR", FAdr);
   add("REF", FAdr);   // IEC REF(x): a REF_TO value
   add("BITADR", FBitAdr);
+  add("__ISVALIDREF", FIsValidRef);
   add("SIZEOF", FSizeOf);
   add("IS_VALID", FIsValid);
   add("IS_VALID_BCD", FIsValidBcd);
@@ -509,6 +510,18 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
       if (holdsMirrored(S.valueType(t))) S.model_.readsMirrored = true;
       if (b.arg0 == FBitAdr) return T.elementary(TypeKind::DWord);
       return T.pointer(S.valueType(t));
+    }
+    case FIsValidRef: {
+      // CODESYS __ISVALIDREF(r): whether REFERENCE TO variable r is bound.
+      if (!bindArgs(S, call, {{"IN"}}, 1, false, fn, a)) return T.error();
+      const Type* t = S.checkExpr(a[0], ctx);
+      if (t->isError()) return t;
+      const Symbol* sym = nullptr;
+      if (auto* n = dyn_cast<NameExpr>(a[0])) sym = n->symbol;
+      else if (auto* m = dyn_cast<MemberExpr>(a[0])) sym = m->symbol;
+      if (!sym || !sym->var || !sym->var->resolvedType || !sym->var->resolvedType->isReference())
+        return bad(a[0], "a REFERENCE TO variable");
+      return T.elementary(TypeKind::Bool);
     }
     case FSizeOf: {
       if (!bindArgs(S, call, {{"IN"}}, 1, false, fn, a)) return T.error();

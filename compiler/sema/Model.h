@@ -17,7 +17,7 @@ namespace stc::sema {
 // Builtin (generic standard) functions: their family and checker data.
 enum BuiltinFamily {
   FConvert, FToGeneric, FAbs, FRealMath, FAtan2, FExpt, FArith, FMod, FMove, FShift, FSel, FMaxMin, FLimit, FMux,
-  FCompare, FLen, FLeftRight, FMid, FConcat, FInsert, FDelete, FReplace, FFind, FFixed, FAdr, FBitAdr, FSizeOf,
+  FCompare, FLen, FLeftRight, FMid, FConcat, FInsert, FDelete, FReplace, FFind, FFixed, FAdr, FBitAdr, FIsValidRef, FSizeOf,
   FIsValid, FIsValidBcd, FEndian, FTrunc, FRound, FBound, FToBcd, FFromBcd, FBitwise,
 };
 int builtinFamily(const Symbol* s);       // -1 if not a builtin

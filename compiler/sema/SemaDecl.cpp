@@ -888,8 +888,35 @@ void SemaImpl::resolveSignature(Symbol* pou) {
               .range(v->init->range);
           continue;
         }
-        checkInitializer(v->init, v->resolvedType, ctx);
+        checkVarInit(v, ctx);
       }
+}
+
+// `r : REFERENCE TO T := x` and `r : REFERENCE TO T REF= x` bind r to x (as
+// CODESYS does); any other initial value is an ordinary initializer.
+void SemaImpl::checkVarInit(VarDecl* v, const Context& ctx) {
+  const Type* t = v->resolvedType;
+  if (!t->isReference()) {
+    if (v->bindsReference)
+      diags_.error(v->init->range.begin, "'REF=' in a declaration needs a REFERENCE TO variable, not '" + t->name + "'", "invalid-init")
+          .range(v->init->range);
+    else
+      checkInitializer(v->init, t, ctx);
+    return;
+  }
+  v->bindsReference = true;
+  const Type* at = valueType(checkExpr(v->init, ctx, t->element));
+  if (at->isError()) return;
+  std::string why;
+  Symbol* decl = nullptr;
+  if (!isLvalue(v->init, ctx, why, &decl)) {
+    diags_.error(v->init->range.begin, "a reference is bound to a variable, not " + why, "invalid-init").range(v->init->range);
+    return;
+  }
+  Conv c = classify(at, t->element);
+  if (!(c == Conv::Exact || (c == Conv::Widening && (at->kind == TypeKind::FunctionBlock || at->kind == TypeKind::Struct))))
+    diags_.error(v->init->range.begin, "cannot bind '" + t->name + "' to a variable of type '" + at->name + "'", "type-mismatch")
+        .range(v->init->range);
 }
 
 void SemaImpl::resolveGlobals() {
@@ -908,7 +935,7 @@ void SemaImpl::resolveGlobals() {
   }
   for (auto& [gd, ctx] : globalDecls_)
     for (VarDecl* v : gd->block.vars)
-      if (v->init && v->resolvedType) checkInitializer(v->init, v->resolvedType, ctx);
+      if (v->init && v->resolvedType) checkVarInit(v, ctx);
       else if (gd->block.isConstant && !v->init && !v->hasEmptyInit && v->resolvedType && v->resolvedType->isElementary())
         diags_.warning(v->name.range.begin, "constant '" + v->name.name + "' has no initial value; it is always the default value",
                        "uninitialized-constant").range(v->name.range);

@@ -1078,9 +1078,11 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
     if (!allows(DialectRule::PositionalThenNamed) || !orderOk)
       diags_.error(e->range.begin, "cannot mix positional and named arguments in the call to '" + callee + "'", "call-args").range(e->parenRange);
   }
+  // Non-formal calls bind every parameter in declaration order, outputs too
+  // (`Add(1, 2, sum)`, `Ton1(start, T#3s, done, elapsed)`).
   std::vector<Symbol*> positionalParams;
   for (Symbol* p : params)
-    if (p->var && p->var->section != VarSection::Output) positionalParams.push_back(p);
+    if (p->var) positionalParams.push_back(p);
   std::set<Symbol*> given;
   size_t posIndex = 0;
   auto checkInOut = [&](Symbol* p, Expr* v) {
@@ -1122,12 +1124,18 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
         break;
       }
       Symbol* p = positionalParams[posIndex++];
-      given.insert(p);
-      a.param = p;
-      if (!a.value) continue;
-      if (p->var->section == VarSection::InOut) checkInOut(p, a.value);
-      else checkInput(p, a.value);
-      continue;
+      if (p->var->section == VarSection::Output) {
+        // An output in its place: checked below as `name => value`.
+        a.kind = Argument::Output;
+        a.name = Ident{p->name, a.range};
+      } else {
+        given.insert(p);
+        a.param = p;
+        if (!a.value) continue;
+        if (p->var->section == VarSection::InOut) checkInOut(p, a.value);
+        else checkInput(p, a.value);
+        continue;
+      }
     }
     std::string up = upperCase(a.name.name);
     Symbol* p = nullptr;
@@ -1197,7 +1205,10 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
       diags_.error(e->range.begin, "missing VAR_IN_OUT argument '" + p->name + "' in the call to '" + callee + "'", "in-out")
           .range(e->range).note(p->declRange.begin, "parameter declared here", p->declRange);
     } else if (isFunction && !anyNamed && p->var->section == VarSection::Input && !p->var->init && posIndex < positionalParams.size()) {
-      diags_.error(e->range.begin, "too few arguments in the call to '" + callee + "' (it takes " + std::to_string(positionalParams.size()) +
+      // Outputs may be left out at the end; they are not counted as needed.
+      size_t needed = 0;
+      for (Symbol* q : positionalParams) needed += q->var->section != VarSection::Output;
+      diags_.error(e->range.begin, "too few arguments in the call to '" + callee + "' (it takes " + std::to_string(needed) +
                                        ", " + std::to_string(posIndex) + " given)", "call-args").range(e->parenRange);
       break;
     }

@@ -77,6 +77,7 @@ public:
   const Type* resolveNamedType(const QualifiedName& q, const Context& ctx, bool report = true);
   void resolveSignature(Symbol* pou);
   void resolveVarDecl(VarDecl* v, Symbol* sym, const Context& ctx);
+  void checkVarInit(VarDecl* v, const Context& ctx);
   void resolveGlobals();
   void checkConfiguration(ConfigurationDecl* c, const Context& ctx);
   void checkAddress(VarDecl* v);
