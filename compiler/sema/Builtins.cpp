@@ -163,6 +163,12 @@ void SemaImpl::registerBuiltins() {
   add("IS_VALID_BCD", FIsValidBcd);
   for (const char* f : {"TO_BIG_ENDIAN", "TO_LITTLE_ENDIAN", "BIG_ENDIAN_TO", "LITTLE_ENDIAN_TO"}) add(f, FEndian);
   add("TRUNC", FTrunc);
+  // Typed truncations: TRUNC_INT (CODESYS), REAL_TRUNC_INT / LREAL_TRUNC_DINT (IEC).
+  const std::pair<const char*, TypeKind> ints[] = {{"SINT", TypeKind::SInt}, {"INT", TypeKind::Int}, {"DINT", TypeKind::DInt},
+                                                   {"LINT", TypeKind::LInt}, {"USINT", TypeKind::USInt}, {"UINT", TypeKind::UInt},
+                                                   {"UDINT", TypeKind::UDInt}, {"ULINT", TypeKind::ULInt}};
+  for (auto [n, k] : ints)
+    for (const char* prefix : {"", "REAL_", "LREAL_"}) add(std::string(prefix) + "TRUNC_" + n, FTrunc, static_cast<int>(k) + 1);
   add("ROUND", FRound);
   add("LOWER_BOUND", FBound);
   add("UPPER_BOUND", FBound);
@@ -508,6 +514,8 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
       }
       // Through an address ST may read any byte of the value.
       if (holdsMirrored(S.valueType(t))) S.model_.readsMirrored = true;
+      // ADR(<function name>): the result is written through the pointer (2.3 libraries).
+      if (S.body_ && decl && decl == S.body_->resultVar) S.body_->resultAssigned = true;
       if (b.arg0 == FBitAdr) return T.elementary(TypeKind::DWord);
       return T.pointer(S.valueType(t));
     }
@@ -565,6 +573,7 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
       if (anyError()) return T.error();
       const Type* t = argTypes()[0];
       if (!t->isReal()) return bad(a[0], "REAL or LREAL");
+      if (b.arg0 == FTrunc && b.arg1) return T.elementary(static_cast<TypeKind>(b.arg1 - 1));
       return b.arg0 == FTrunc ? T.elementary(TypeKind::DInt) : t;
     }
     case FBound: {

@@ -937,6 +937,8 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
       if ((ul->kind == TypeKind::Tod || ul->kind == TypeKind::LTod || ul->kind == TypeKind::DT || ul->kind == TypeKind::LDT) && ur->isDuration())
         return lt;
       if (add && ul->isDuration() && (ur->kind == TypeKind::Tod || ur->kind == TypeKind::DT)) return rt;
+      // DATE + TIME (CODESYS): the point in time that far after the date's midnight, a DT.
+      if (ul->kind == TypeKind::Date && ur->kind == TypeKind::Time) return types_.elementary(TypeKind::DT);
       if (!add && ul->isDate() && ur->isDate() && classify(lt, rt) != Conv::Incompatible) return timeOf(ul, ur);
       if (ul->isPointer() || ur->isPointer()) {
         if (!allows(DialectRule::PointerConversions)) {
@@ -953,12 +955,14 @@ const Type* SemaImpl::checkBinary(BinaryExpr* e, const Context& ctx, const Type*
     case BinaryOp::Mul:
     case BinaryOp::Div: {
       if (e->op == BinaryOp::Div) checkDivisor(e, ctx);
-      if ((e->op == BinaryOp::Mul || e->op == BinaryOp::Div) && ul->isDuration() && ur->isNumeric()) return lt;
-      if (e->op == BinaryOp::Mul && ul->isNumeric() && ur->isDuration()) return rt;
+      // TIME * n, TIME / n, n * TIME; CODESYS also takes bit strings for n (T#1s * byteVar).
+      auto factor = [&](const Type* u) { return u->isNumeric() || (allows(DialectRule::IntegerBitString) && u->isBitString()); };
+      if ((e->op == BinaryOp::Mul || e->op == BinaryOp::Div) && ul->isDuration() && factor(ur)) return lt;
+      if (e->op == BinaryOp::Mul && factor(ul) && ur->isDuration()) return rt;
       bool lnum = ul->isNumeric() || (allows(DialectRule::IntegerBitString) && ul->isBitString()) || (allows(DialectRule::IntegerEnum) && ul->kind == TypeKind::Enum);
       bool rnum = ur->isNumeric() || (allows(DialectRule::IntegerBitString) && ur->isBitString()) || (allows(DialectRule::IntegerEnum) && ur->kind == TypeKind::Enum);
       if (!lnum || !rnum) {
-        if (ul->isBitString() || ur->isBitString())
+        if ((ul->isBitString() || ur->isBitString()) && strictIec())
           diags_.error(e->opLoc, std::string("arithmetic '") + op + "' on bit-string type '" + (ul->isBitString() ? lt : rt)->name +
                                      "' is not allowed in IEC mode; convert to an integer type first", "type-mismatch")
               .range(e->lhs->range).range(e->rhs->range);
