@@ -60,6 +60,9 @@ bool Controller::load(std::unique_ptr<codegen::CompiledModule> module, std::stri
   if (!image_) return false;
   initDynamic_ = reinterpret_cast<void (*)()>(jit_->lookup("__stc_init_dynamic", error));
   if (!initDynamic_) return false;
+  fbInit_ = reinterpret_cast<void (*)(bool)>(jit_->lookup("__stc_fb_init", error));
+  fbExit_ = reinterpret_cast<void (*)(bool)>(jit_->lookup("__stc_fb_exit", error));
+  if (!fbInit_ || !fbExit_) return false;
   coldSnapshot_.assign(image_, image_ + module_->image.size);
   sched_ = std::make_unique<Scheduler>();
   for (const codegen::TaskPlan& plan : module_->tasks) {
@@ -129,7 +132,13 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
       return 2;
     }
   }
-  if (!opts.retainFile.empty()) restoreRetain(opts.retainFile, opts.cold, err);
+  bool warm = !opts.retainFile.empty() && restoreRetain(opts.retainFile, opts.cold, err);
+  {
+    // FB_INIT of every instance, after the retained values are back.
+    SessionScope scope(&sessionTable_);
+    __stc_budget = INT64_MAX / 2;
+    fbInit_(!warm);
+  }
   // Whether the natives must keep the {attribute 'mirrored'} structs current.
   bool mirroredRead = model_.readsMirrored || opts.observesMirrored;
   for (const ValueRef& r : watches) mirroredRead = mirroredRead || r.mirrored;
@@ -268,6 +277,11 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   sigaction(SIGINT, &oldInt, nullptr);
   sigaction(SIGTERM, &oldTerm, nullptr);
   gStopTarget = nullptr;
+  {
+    SessionScope scope(&sessionTable_);
+    __stc_budget = INT64_MAX / 2;
+    fbExit_(false);
+  }
   if (!opts.retainFile.empty() && !saveRetain(opts.retainFile, retainError))
     err << "stc: error: cannot save retain file: " << retainError << "\n";
   if (trace) {
@@ -333,15 +347,16 @@ bool Controller::saveRetain(const std::string& file, std::string& error) {
   return saveRetainFile(file, entries, error);
 }
 
-void Controller::restoreRetain(const std::string& file, bool coldStart, std::ostream& err) {
+bool Controller::restoreRetain(const std::string& file, bool coldStart, std::ostream& err) {
   std::vector<RetainEntry> entries;
   std::string error;
   RetainLoad r = loadRetainFile(file, entries, error);
-  if (r == RetainLoad::Missing) return;
+  if (r == RetainLoad::Missing) return false;
   if (r == RetainLoad::Corrupt) {
     err << "stc: warning: retain file '" << file << "' is damaged (" << error << "); cold start\n";
-    return;
+    return false;
   }
+  bool restored = false;
   std::map<std::string, const RetainEntry*> byPath;
   for (const RetainEntry& e : entries) byPath[e.path] = &e;
   for (const RetainRegion& reg : retainRegions()) {
@@ -355,7 +370,9 @@ void Controller::restoreRetain(const std::string& file, bool coldStart, std::ost
       continue;
     }
     std::memcpy(image_ + reg.offset, it->second->bytes.data(), n);
+    restored = true;
   }
+  return restored;
 }
 
 void Controller::reportFaults(std::ostream&) {

@@ -76,7 +76,8 @@ public:
   struct RetainRegion { std::string path; uint64_t offset; const sema::Type* type; bool persistent; };
   std::vector<RetainRegion> retainRegions() const;
   bool saveRetain(const std::string& file, std::string& error);
-  void restoreRetain(const std::string& file, bool coldStart, std::ostream& err);
+  // Returns whether values were restored (a warm start).
+  bool restoreRetain(const std::string& file, bool coldStart, std::ostream& err);
 
   std::string valueText(const ValueRef& r) const;
 
@@ -91,6 +92,8 @@ private:
   uint8_t* image_ = nullptr;
   std::vector<uint8_t> coldSnapshot_;
   void (*initDynamic_)() = nullptr;
+  void (*fbInit_)(bool) = nullptr;   // __stc_fb_init(bInitRetains): FB_INIT of the image's instances
+  void (*fbExit_)(bool) = nullptr;   // __stc_fb_exit: FB_EXIT at stop
   struct TaskRuntime {
     std::vector<void (*)()> entries;
   };

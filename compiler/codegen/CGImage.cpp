@@ -285,6 +285,7 @@ void CodeGen::buildImage() {
   b_.SetInsertPoint(st.returnBlock);
   b_.CreateRetVoid();
   fs_ = nullptr;
+  emitLifecycleEntryPoints();
   if (foldFn_) {
     foldFn_->eraseFromParent();
     foldFn_ = nullptr;

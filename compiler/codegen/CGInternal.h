@@ -67,6 +67,9 @@ struct DynamicInit {
   }
 };
 
+// FB_INIT / FB_EXIT (CGLifecycle.cpp).
+enum class Lifecycle { Init, Exit };
+
 struct FnState {
   llvm::Function* fn = nullptr;
   Symbol* pou = nullptr;                       // the POU being lowered (null: init code)
@@ -128,7 +131,14 @@ public:
   // Initialises memory at run time: constant part copied, the rest computed.
   void initAt(Address dst, const ast::Expr* init, const ast::VarDecl* decl = nullptr);
   void emitDynamicInit(llvm::Value* base, const DynamicInit& d);
-  int folding_ = 0;   // inside foldScalar: errors mean "not a constant", not a diagnostic
+  int folding_ = 0;
+  bool libraryMode_ = false;   // no PROGRAM: every POU keeps external linkage
+  // CGLifecycle.cpp
+  std::map<std::pair<const Type*, Lifecycle>, bool> lifecycleMemo_;
+  bool hasLifecycle(const Type* t, Lifecycle w);
+  void emitLifecycle(llvm::Value* obj, const Type* t, Lifecycle w, llvm::Value* initRetains);
+  void callLifecycleMethod(sema::Symbol* m, llvm::Value* self, llvm::Value* initRetains);
+  void emitLifecycleEntryPoints();   // inside foldScalar: errors mean "not a constant", not a diagnostic
   Address referenceSlot(const ast::Expr* e);
   llvm::Value* referenceTarget(const ast::Expr* e);
   llvm::Value* imageAddr(uint64_t off);

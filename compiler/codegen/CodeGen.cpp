@@ -2,6 +2,8 @@
 #include <llvm/Support/raw_ostream.h>
 
 #include "basic/Text.h"
+#include <algorithm>
+
 #include "codegen/CGInternal.h"
 
 namespace stc::codegen {
@@ -45,6 +47,9 @@ CodeGen::CodeGen(const sema::Model& model, const SourceManager& sm, DiagnosticsE
   i32_ = llvm::Type::getInt32Ty(ctx);
   i64_ = llvm::Type::getInt64Ty(ctx);
   out_.sites.emplace_back();   // site 0: unknown
+  // A library (no PROGRAM to run) keeps every POU: with internal linkage the
+  // optimiser would delete them all, since nothing calls them.
+  libraryMode_ = std::none_of(model.pous.begin(), model.pous.end(), [](const Symbol* p) { return p->kind == Symbol::Program; });
 }
 
 void CodeGen::error(SourceRange r, const std::string& msg) {
@@ -191,7 +196,7 @@ llvm::Function* CodeGen::functionFor(Symbol* pou) {
   else name += pou->pou->owner ? pou->name : qualifiedName(pou);
   bool native = isNative(pou);
   bool hasBody = d && d->hasBody && !d->isAbstract;
-  bool exported = opts_.exportFunctions && pou->kind == Symbol::Function;
+  bool exported = (opts_.exportFunctions && pou->kind == Symbol::Function) || libraryMode_;
   auto linkage = (native || !hasBody || exported) ? llvm::Function::ExternalLinkage : llvm::Function::InternalLinkage;
   if (native) name = "native." + name.substr(3);
   llvm::Function* f = llvm::Function::Create(signatureOf(pou), linkage, name, mod_);
@@ -317,7 +322,11 @@ void CodeGen::lowerPou(Symbol* pou) {
     st.locals[pou->pou->result] = result;
     initAt(result, nullptr);
   }
-  for (auto& [addr, v] : toInit) initAt(addr, v->init, v);
+  for (auto& [addr, v] : toInit) {
+    initAt(addr, v->init, v);
+    // A function block local of a function or method: FB_INIT on every call.
+    if (hasLifecycle(addr.type, Lifecycle::Init)) emitLifecycle(addr.ptr, addr.type, Lifecycle::Init, b_.getFalse());
+  }
   st.returnBlock = llvm::BasicBlock::Create(ctx_, "return", f);
   emitStmts(d->body);
   if (blockOpen()) b_.CreateBr(st.returnBlock);
