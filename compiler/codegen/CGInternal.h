@@ -80,6 +80,7 @@ struct FnState {
   llvm::BasicBlock* returnBlock = nullptr;
   struct Loop { llvm::BasicBlock* cont; llvm::BasicBlock* exit; };
   std::vector<Loop> loops;
+  size_t maxLoopDepth = 0;                     // deepest loop nesting in the body
   std::map<std::string, llvm::BasicBlock*> labels;   // upper-case label -> block
   llvm::IRBuilder<>* allocaBuilder = nullptr;
   std::unique_ptr<llvm::IRBuilder<>> allocaBuilderStorage;

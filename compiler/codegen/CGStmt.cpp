@@ -173,6 +173,7 @@ void CodeGen::emitStmt(const Stmt* s) {
       b_.CreateCondBr(toBool(emitValue(w->cond, elementary(TypeKind::Bool))), body, exit);
       b_.SetInsertPoint(body);
       fs_->loops.push_back({latch, exit});
+      fs_->maxLoopDepth = std::max(fs_->maxLoopDepth, fs_->loops.size());
       emitStmts(w->body);
       fs_->loops.pop_back();
       if (blockOpen()) b_.CreateBr(latch);
@@ -191,6 +192,7 @@ void CodeGen::emitStmt(const Stmt* s) {
       b_.CreateBr(body);
       b_.SetInsertPoint(body);
       fs_->loops.push_back({cond, exit});
+      fs_->maxLoopDepth = std::max(fs_->maxLoopDepth, fs_->loops.size());
       emitStmts(r->body);
       fs_->loops.pop_back();
       if (blockOpen()) b_.CreateBr(cond);
@@ -310,6 +312,7 @@ void CodeGen::emitFor(const ForStmt* s) {
   b_.SetInsertPoint(body);
   store(var, b_.CreateTrunc(b_.CreateAdd(from, b_.CreateMul(k, by)), narrow));
   fs_->loops.push_back({latch, done});
+  fs_->maxLoopDepth = std::max(fs_->maxLoopDepth, fs_->loops.size());
   bool hadSafepoint = fs_->hasSafepoint;
   fs_->hasSafepoint = false;
   emitStmts(s->body);

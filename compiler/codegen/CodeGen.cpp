@@ -52,6 +52,9 @@ CodeGen::CodeGen(const sema::Model& model, const SourceManager& sm, DiagnosticsE
   libraryMode_ = std::none_of(model.pous.begin(), model.pous.end(), [](const Symbol* p) { return p->kind == Symbol::Program; });
 }
 
+// Deeper loop nests are compiled without optimisation (see emitPouBody).
+constexpr size_t kMaxOptimisedLoopDepth = 64;
+
 void CodeGen::error(SourceRange r, const std::string& msg) {
   ++errors_;
   if (folding_) return;   // a failed fold attempt: the value is computed at run time instead
@@ -337,6 +340,17 @@ void CodeGen::lowerPou(Symbol* pou) {
   if (st.hasSafepoint) safepointFns_.insert(f);
   syncBudgetAroundCalls(st);
   b_.SetCurrentDebugLocation(llvm::DebugLoc());
+  // LLVM's loop passes take time cubic in the nesting depth (10,000 nested
+  // WHILE would take hours): such a body is compiled without optimisation,
+  // which is linear, and the user is told.
+  if (st.maxLoopDepth > kMaxOptimisedLoopDepth && opts_.optLevel > 0) {
+    f->addFnAttr(llvm::Attribute::OptimizeNone);
+    f->addFnAttr(llvm::Attribute::NoInline);
+    diags_.warning(pou->declRange.begin, "loops nested " + std::to_string(st.maxLoopDepth) + " deep in '" + pou->name +
+                                             "': it is compiled without optimisation (more than " + std::to_string(kMaxOptimisedLoopDepth) +
+                                             " levels)", "deep-nesting")
+        .range(pou->declRange);
+  }
   fs_ = nullptr;
 }
 

@@ -14,6 +14,7 @@ namespace {
 // Deeply nested input would overflow the recursive-descent parser's stack.
 // Brackets deeper than this are reported instead of parsed.
 constexpr int kMaxNesting = 256;
+constexpr int kMaxStatementNesting = 256;   // IF/CASE/FOR/WHILE/REPEAT inside each other
 
 // The SLL stage reports nothing: a failure only means "retry with LL".
 class SilentBail : public antlr4::BailErrorStrategy {
@@ -26,10 +27,23 @@ public:
 constexpr size_t kMaxStatementTokens = 100000;
 
 bool checkNesting(const SourceFile& file, const LexedFile& lexed, DiagnosticsEngine& diags) {
-  int depth = 0;
+  int depth = 0, statements = 0;
   size_t sinceSemi = 0;
   for (const auto& t : lexed.tokens) {
     size_t ty = t->getType();
+    // Compound statements: the optimiser's loop analyses grow with the square
+    // of the nesting, so deep nests are refused here (see also CodeGen's
+    // kMaxOptimisedLoopDepth).
+    if (ty == STLexer::IF || ty == STLexer::CASE || ty == STLexer::FOR || ty == STLexer::WHILE || ty == STLexer::REPEAT) {
+      if (++statements > kMaxStatementNesting) {
+        diags.error(locOf(file.id, t.get()), "statements nested more than " + std::to_string(kMaxStatementNesting) +
+                                                 " levels deep; move the inner part into a function", "nesting");
+        return false;
+      }
+    } else if (ty == STLexer::END_IF || ty == STLexer::END_CASE || ty == STLexer::END_FOR || ty == STLexer::END_WHILE ||
+               ty == STLexer::END_REPEAT) {
+      if (statements > 0) --statements;
+    }
     if (ty == STLexer::SEMI) sinceSemi = 0;
     else if (++sinceSemi > kMaxStatementTokens) {
       diags.error(locOf(file.id, t.get()), "statement longer than " + std::to_string(kMaxStatementTokens) + " tokens; split it", "nesting");

@@ -37,7 +37,8 @@ uint64_t Layout::sizeOf(const Type* t) const {
       uint64_t n = alignUp(sizeOf(t->element), alignOf(t->element));
       for (const Dim& d : t->dims) {
         if (d.star) return 0;
-        n *= static_cast<uint64_t>(d.hi - d.lo + 1);
+        // Saturates: sema refuses such arrays, nothing may wrap to a small size.
+        if (__builtin_mul_overflow(n, static_cast<uint64_t>(d.hi - d.lo) + 1, &n)) return UINT64_MAX;
       }
       return n;
     }

@@ -8,6 +8,9 @@
 
 namespace stc::sema {
 
+// The largest object (array, structure, instance) a program may declare.
+constexpr uint64_t kMaxObjectBytes = 1ull << 30;
+
 std::string upperCase(std::string_view s) { return asciiUpper(s); }
 
 Symbol* Scope::add(Symbol* s) {
@@ -563,6 +566,21 @@ const Type* SemaImpl::resolveType(TypeRef* t, const Context& ctx, const std::str
       }
       const Type* elem = resolveType(t->element, ctx);
       if (!ok || elem->isError()) break;
+      // The size must fit the controller's memory: 1 GiB per object (also in
+      // the 32-bit address model); checked where the array is written.
+      uint64_t count = 1;
+      bool overflow = false;
+      for (const Dim& d : dims)
+        if (!d.star) overflow = overflow || __builtin_mul_overflow(count, static_cast<uint64_t>(d.hi - d.lo) + 1, &count);
+      uint64_t bytes = 0;
+      bool sized = elem->isElementary() || elem->kind == TypeKind::Pointer || elem->kind == TypeKind::Reference || elem->kind == TypeKind::Array;
+      if (sized) overflow = overflow || __builtin_mul_overflow(count, std::max<uint64_t>(layout_.sizeOf(elem), 1), &bytes);
+      if (overflow || count > kMaxObjectBytes || bytes > kMaxObjectBytes) {
+        diags_.error(t->range.begin, "array '" + types_.array(elem, dims)->name + "' is too large" +
+                                         (overflow ? " (its size overflows)" : " (" + std::to_string(sized ? bytes : count) + (sized ? " bytes" : " elements") + ")") +
+                                         "; an object may have at most 1 GiB", "invalid-type").range(t->range);
+        break;
+      }
       result = types_.array(elem, std::move(dims));
       break;
     }
