@@ -139,7 +139,8 @@ public:
   bool hasLifecycle(const Type* t, Lifecycle w);
   void emitLifecycle(llvm::Value* obj, const Type* t, Lifecycle w, llvm::Value* initRetains);
   void callLifecycleMethod(sema::Symbol* m, llvm::Value* self, llvm::Value* initRetains);
-  void emitLifecycleEntryPoints();   // inside foldScalar: errors mean "not a constant", not a diagnostic
+  void emitLifecycleEntryPoints();
+  void emitBodyInParts(FnState& st, const std::vector<ast::Stmt*>& body);   // inside foldScalar: errors mean "not a constant", not a diagnostic
   Address referenceSlot(const ast::Expr* e);
   llvm::Value* referenceTarget(const ast::Expr* e);
   llvm::Value* imageAddr(uint64_t off);

@@ -54,6 +54,36 @@ CodeGen::CodeGen(const sema::Model& model, const SourceManager& sm, DiagnosticsE
 
 // Deeper loop nests are compiled without optimisation (see emitPouBody).
 constexpr size_t kMaxOptimisedLoopDepth = 64;
+// Long bodies are lowered in parts of this many top-level statements.
+constexpr size_t kStatementsPerPart = 128;
+
+// Whether RETURN, JMP or a label appears anywhere in `body` (they cannot cross
+// the functions a long body is split into).
+bool transfersControl(const std::vector<Stmt*>& body) {
+  for (const Stmt* s : body) {
+    if (!s) continue;
+    switch (s->kind) {
+      case Stmt::Return: case Stmt::Jmp: case Stmt::Label: return true;
+      case Stmt::If: {
+        auto* i = cast<IfStmt>(s);
+        for (const auto& b : i->branches) if (transfersControl(b.body)) return true;
+        if (transfersControl(i->elseBody)) return true;
+        break;
+      }
+      case Stmt::Case: {
+        auto* c = cast<CaseStmt>(s);
+        for (const auto& e : c->elements) if (transfersControl(e.body)) return true;
+        if (transfersControl(c->elseBody)) return true;
+        break;
+      }
+      case Stmt::For: if (transfersControl(cast<ForStmt>(s)->body)) return true; break;
+      case Stmt::While: if (transfersControl(cast<WhileStmt>(s)->body)) return true; break;
+      case Stmt::Repeat: if (transfersControl(cast<RepeatStmt>(s)->body)) return true; break;
+      default: break;
+    }
+  }
+  return false;
+}
 
 void CodeGen::error(SourceRange r, const std::string& msg) {
   ++errors_;
@@ -199,7 +229,9 @@ llvm::Function* CodeGen::functionFor(Symbol* pou) {
   else name += pou->pou->owner ? pou->name : qualifiedName(pou);
   bool native = isNative(pou);
   bool hasBody = d && d->hasBody && !d->isAbstract;
-  bool exported = (opts_.exportFunctions && pou->kind == Symbol::Function) || libraryMode_;
+  // Library mode keeps the user's POUs, not the built-in libraries' ("<stdlib>/...").
+  bool userSource = pou->declRange.begin.valid() && sm_.file(pou->declRange.begin.file).path.rfind("<stdlib>", 0) != 0;
+  bool exported = userSource && ((opts_.exportFunctions && pou->kind == Symbol::Function) || libraryMode_);
   auto linkage = (native || !hasBody || exported) ? llvm::Function::ExternalLinkage : llvm::Function::InternalLinkage;
   if (native) name = "native." + name.substr(3);
   llvm::Function* f = llvm::Function::Create(signatureOf(pou), linkage, name, mod_);
@@ -244,6 +276,41 @@ void CodeGen::beginFunction(FnState& st, llvm::Function* f) {
   st.allocaBuilder = st.allocaBuilderStorage.get();
   b_.SetInsertPoint(code);
   b_.SetCurrentDebugLocation(llvm::DebugLoc());
+}
+
+// A program or FB body with thousands of statements (one call per axis) is
+// lowered as a sequence of calls to `st.<POU>.__part<k>`, each holding
+// kStatementsPerPart statements: LLVM's inliner and code generator take time
+// that grows faster than linearly with the size of one function, so the build
+// time of such a body grows linearly with its length this way.  The parts are
+// not inlined back; they share the instance pointer and nothing else (bodies
+// with VAR_TEMP, RETURN, JMP or labels are not split).
+void CodeGen::emitBodyInParts(FnState& st, const std::vector<Stmt*>& body) {
+  auto* ft = llvm::FunctionType::get(llvm::Type::getVoidTy(ctx_), {ptrTy_}, false);
+  for (size_t first = 0, part = 0; first < body.size(); first += kStatementsPerPart, ++part) {
+    std::vector<Stmt*> slice(body.begin() + static_cast<long>(first), body.begin() + static_cast<long>(std::min(body.size(), first + kStatementsPerPart)));
+    auto* pf = llvm::Function::Create(ft, llvm::Function::InternalLinkage, st.fn->getName() + ".__part" + std::to_string(part), mod_);
+    pf->addFnAttr(llvm::Attribute::NoInline);
+    llvm::BasicBlock* savedBlock = b_.GetInsertBlock();
+    llvm::DebugLoc savedLoc = b_.getCurrentDebugLocation();
+    FnState ps;
+    ps.pou = st.pou;
+    beginFunction(ps, pf);
+    ps.self = pf->getArg(0);
+    ps.selfType = st.selfType;
+    if (st.sp) ps.sp = debugFunction(pf, st.pou);
+    ps.returnBlock = llvm::BasicBlock::Create(ctx_, "return", pf);
+    emitStmts(slice);
+    if (blockOpen()) b_.CreateBr(ps.returnBlock);
+    b_.SetInsertPoint(ps.returnBlock);
+    b_.CreateRetVoid();
+    if (ps.hasSafepoint) safepointFns_.insert(pf);
+    syncBudgetAroundCalls(ps);
+    fs_ = &st;
+    b_.SetInsertPoint(savedBlock);
+    b_.SetCurrentDebugLocation(savedLoc);
+    b_.CreateCall(pf, {st.self});
+  }
 }
 
 void CodeGen::lowerPou(Symbol* pou) {
@@ -331,7 +398,10 @@ void CodeGen::lowerPou(Symbol* pou) {
     if (hasLifecycle(addr.type, Lifecycle::Init)) emitLifecycle(addr.ptr, addr.type, Lifecycle::Init, b_.getFalse());
   }
   st.returnBlock = llvm::BasicBlock::Create(ctx_, "return", f);
-  emitStmts(d->body);
+  bool hasTemps = false;
+  for (const VarBlock& vb : d->varBlocks) hasTemps = hasTemps || (vb.section == VarSection::Temp && !vb.vars.empty());
+  if (isBody && !hasTemps && d->body.size() > kStatementsPerPart && !transfersControl(d->body)) emitBodyInParts(st, d->body);
+  else emitStmts(d->body);
   if (blockOpen()) b_.CreateBr(st.returnBlock);
   b_.SetInsertPoint(st.returnBlock);
   debugLocation(d->endRange.valid() ? d->endRange.begin : pou->declRange.begin);
