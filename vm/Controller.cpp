@@ -385,8 +385,14 @@ void Controller::reportFaults(std::ostream&) {
     if (site && site->detail == "MOD" && f.info.code == "fault-division-by-zero") msg = prefix + "MOD by zero";
     if (site && !site->detail.empty() && f.info.code == "fault-unbound-in-out") msg = prefix + "VAR_IN_OUT " + site->detail + " is not bound";
     SourceLoc at = site && site->loc.valid() ? site->loc : site ? site->range.begin : SourceLoc{};
-    if (site && at.valid()) diags_.error(at, msg, f.info.code.c_str()).range(site->range);
-    else diags_.error(SourceLoc{}, msg, f.info.code.c_str());
+    auto d = site && at.valid() ? diags_.error(at, msg, f.info.code.c_str()) : diags_.error(SourceLoc{}, msg, f.info.code.c_str());
+    if (site && at.valid()) d.range(site->range);
+    // The call chain: which caller passed the bad value.
+    for (uint32_t c : f.info.callers) {
+      const codegen::Site* cs = c < module_->sites.size() ? &module_->sites[c] : nullptr;
+      if (!cs || !cs->range.valid()) continue;
+      d.note(cs->range.begin, (cs->detail.empty() ? std::string("called") : "'" + cs->detail + "' called") + " from '" + cs->pou + "' here", cs->range);
+    }
   }
 }
 

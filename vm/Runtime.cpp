@@ -24,6 +24,9 @@ namespace {
   info.site = site;
   info.code = stc::codegen::faultCode(kind);
   info.message = std::move(message);
+  // The callers, innermost first, from the task's call chain.
+  const stc::vm::CallChain& chain = *__stc_calls;
+  for (uint32_t k = 0; k < chain.depth && k < 64; ++k) info.callers.push_back(chain.sites[(chain.depth - 1 - k) % 64]);
   if (auto* s = stc::vm::Scheduler::current()) s->fault(std::move(info));
   // Outside a task (dynamic initialisation): nothing can be stopped safely.
   std::fprintf(stderr, "stc: runtime fault outside a task: %s\n", info.message.c_str());
@@ -417,6 +420,7 @@ std::map<std::string, void*> runtimeSymbols() {
   STC_SYM(__stc_wstr_cmp);
   STC_SYM(__stc_wstr_len);
   m["__stc_budget"] = &__stc_budget;
+  m["__stc_calls"] = &__stc_calls;
 #undef STC_SYM
   // What LLVM lowers intrinsics and loops to.
   m["memcpy"] = reinterpret_cast<void*>(static_cast<void* (*)(void*, const void*, size_t)>(&std::memcpy));

@@ -13,6 +13,10 @@
 
 extern "C" {
 int64_t __stc_budget = 1'000'000;
+namespace {
+stc::vm::CallChain gOutsideTasks;   // dynamic initialisation, FB_INIT / FB_EXIT
+}
+stc::vm::CallChain* __stc_calls = &gOutsideTasks;
 }
 
 namespace stc::vm {
@@ -58,6 +62,7 @@ struct Scheduler::Task {
   Time wakeAt = 0;
   std::function<bool()> ready;
   uint32_t lastSite = 0;       // the last safepoint of the current activation
+  CallChain calls;             // the ST calls of the current activation
   std::unique_ptr<Fiber> fiber;
   std::vector<uint32_t> hooks; // into hooks_, in registration order
 };
@@ -143,7 +148,10 @@ void Scheduler::run(RunLimit limit) {
   struct CurrentGuard {
     Scheduler* prev;
     explicit CurrentGuard(Scheduler* s) : prev(tScheduler) { tScheduler = s; }
-    ~CurrentGuard() { tScheduler = prev; }
+    ~CurrentGuard() {
+      tScheduler = prev;
+      __stc_calls = &gOutsideTasks;   // the tasks' chains are not for code run outside them
+    }
   } guard(this);
 
   if (opts_.realtime) wallStart_ = monotonicNs() - next_;
@@ -166,6 +174,7 @@ __attribute__((always_inline)) inline void Scheduler::runSlot(Task& t, bool edge
     t.start = now_;
     t.waited = 0;
     t.lastSite = 0;
+    t.calls.depth = 0;   // a faulted activation left its chain behind
     execute(t);
     break;
   case State::Preempted:
@@ -283,6 +292,7 @@ void Scheduler::endSlot(Task& t) {
 void Scheduler::execute(Task& t) {
   t.state = State::Active;
   __stc_budget = t.cfg.slice;
+  __stc_calls = &t.calls;
   if (!t.cfg.mayBlock) {
     t.cfg.entry();  // fault() does not return here but to runTicks
     t.state = State::Idle;

@@ -66,10 +66,20 @@ struct TaskConfig {
   int64_t slice = 1'000'000;         // safepoint budget per slot
 };
 
+// The ST calls active in a task: generated code writes the call site into
+// sites[1 + depth % 64] and increments depth around each call of an ST POU, so
+// a fault can name its callers.  One per task; __stc_calls points to the
+// running task's.
+struct CallChain {
+  uint32_t depth = 0;
+  uint32_t sites[64] = {};
+};
+
 struct FaultInfo {
   uint32_t site = 0;                 // codegen's source-site id, 0 = unknown
   std::string code;                  // "fault-index", "fault-watchdog", ...
   std::string message;
+  std::vector<uint32_t> callers = {};   // call sites, innermost first (at most 64)
 };
 
 struct TaskStats {
@@ -213,3 +223,5 @@ extern thread_local Scheduler* tScheduler;   // set while a scheduler runs on th
 inline Scheduler* Scheduler::current() { return detail::tScheduler; }
 
 }  // namespace stc::vm
+
+extern "C" stc::vm::CallChain* __stc_calls;

@@ -131,6 +131,7 @@ llvm::Value* CodeGen::callPou(const CallExpr* e, Symbol* target, llvm::Value* se
         else args.push_back(emitAddr(a->value).ptr);
       }
     }
+  llvm::Value* chainDepth = (!target || !isNative(target)) ? pushCallSite(site(e, target ? target->name : "")) : nullptr;
   llvm::CallInst* call;
   if (fnPtr) {
     call = b_.CreateCall(fty, fnPtr, args);
@@ -150,6 +151,7 @@ llvm::Value* CodeGen::callPou(const CallExpr* e, Symbol* target, llvm::Value* se
     if (fs_ && fs_->fn) calls_[fs_->fn].insert(f);
   }
   if (f) call->setAttributes(f->getAttributes());
+  if (chainDepth) popCallSite(chainDepth);
   for (Out& o : outs) {
     Address dst = emitAddr(o.arg->value);
     llvm::Value* v = load(o.temp);
@@ -194,6 +196,7 @@ void CodeGen::callInstance(const CallExpr* e, Symbol* fbSym, llvm::Value* inst) 
   // references and in-outs run the body of the instance's own type.
   bool viaSuper = isa<DerefExpr>(e->callee) && isa<SuperExpr>(cast<DerefExpr>(e->callee)->base);
   bool virt = fbSym->kind == Symbol::FunctionBlock && !viaSuper && !isValueInstance(e->callee);
+  llvm::Value* chainDepth = isNative(fbSym) ? nullptr : pushCallSite(site(e, fbSym->name));
   if (virt) {
     llvm::Value* vptr = b_.CreateAlignedLoad(ptrTy_, inst, llvm::MaybeAlign(8));
     llvm::Value* fp = b_.CreateAlignedLoad(ptrTy_, b_.CreateConstInBoundsGEP1_64(ptrTy_, vptr, 1), llvm::MaybeAlign(8));
@@ -203,6 +206,7 @@ void CodeGen::callInstance(const CallExpr* e, Symbol* fbSym, llvm::Value* inst) 
     b_.CreateCall(body, {inst});
     if (fs_ && fs_->fn) calls_[fs_->fn].insert(body);
   }
+  if (chainDepth) popCallSite(chainDepth);
   for (const Argument* a : outputs) {
     const sema::FieldLayout* f = layout_.field(fbType, a->param->var);
     Address src{b_.CreateConstInBoundsGEP1_64(i8_, inst, f->offset), f->type};
@@ -800,6 +804,22 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
     default:
       return unsupported();
   }
+}
+
+// vm::CallChain is { uint32 depth; uint32 sites[64] }: the site goes into the
+// ring at depth % 64 and depth grows by one; after the call it is restored
+// (also when the callee faulted, the task's next activation resets it).
+llvm::Value* CodeGen::pushCallSite(uint32_t site) {
+  llvm::Value* chain = b_.CreateAlignedLoad(ptrTy_, callChain_, llvm::MaybeAlign(8));
+  llvm::Value* depth = b_.CreateAlignedLoad(i32_, chain, llvm::MaybeAlign(4));
+  llvm::Value* slot = b_.CreateAdd(b_.CreateAnd(depth, b_.getInt32(63)), b_.getInt32(1));
+  b_.CreateAlignedStore(b_.getInt32(site), b_.CreateInBoundsGEP(i32_, chain, slot), llvm::MaybeAlign(4));
+  b_.CreateAlignedStore(b_.CreateAdd(depth, b_.getInt32(1)), chain, llvm::MaybeAlign(4));
+  return depth;
+}
+
+void CodeGen::popCallSite(llvm::Value* depth) {
+  b_.CreateAlignedStore(depth, b_.CreateAlignedLoad(ptrTy_, callChain_, llvm::MaybeAlign(8)), llvm::MaybeAlign(4));
 }
 
 }  // namespace stc::codegen

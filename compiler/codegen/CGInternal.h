@@ -236,6 +236,11 @@ public:
   llvm::IntegerType *i1_, *i8_, *i16_, *i32_, *i64_;
   llvm::GlobalVariable* image_ = nullptr;
   llvm::GlobalVariable* budget_ = nullptr;
+  llvm::GlobalVariable* callChain_ = nullptr;   // __stc_calls: the running task's vm::CallChain
+  // Around each call of an ST POU: the call site on the task's call chain, so
+  // that a fault names the callers (CGCall.cpp).
+  llvm::Value* pushCallSite(uint32_t site);
+  void popCallSite(llvm::Value* depth);
   FnState* fs_ = nullptr;
   std::map<const ast::VarDecl*, uint64_t> imageOffsets_;   // globals, VAR_STAT, program instances' decls
   std::map<const Symbol*, uint64_t> programOffsets_;       // PROGRAM type -> its singleton instance

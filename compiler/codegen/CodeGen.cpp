@@ -439,6 +439,7 @@ bool CodeGen::run(bool needTasks) {
       for (const VarBlock& vb : pou->pou->decl->varBlocks)
         for (const VarDecl* v : vb.vars) varOwner_[v] = pou;
   budget_ = new llvm::GlobalVariable(mod_, i64_, false, llvm::GlobalValue::ExternalLinkage, nullptr, "__stc_budget");
+  callChain_ = new llvm::GlobalVariable(mod_, ptrTy_, false, llvm::GlobalValue::ExternalLinkage, nullptr, "__stc_calls");
   beginDebugInfo();
   layoutImage();
   // Every POU body, then the image (its initialiser may refer to vtables and functions).
