@@ -305,7 +305,12 @@ bool SemaImpl::checkConversion(const Type* to, Expr* e, const char* what) {
     }
   }
   // Constant expressions must fit too (SINT := 100 + 100).
-  if (!lit && from->isInteger() && (to->underlying()->isInteger() || to->kind == TypeKind::Subrange) && !isa<CallExpr>(e)) {
+  auto isSizeOf = [](const Expr* x) {
+    auto* c = dyn_cast<CallExpr>(x);
+    auto* n = c ? dyn_cast<NameExpr>(c->callee) : nullptr;
+    return n && upperCase(n->ident.name) == "SIZEOF";
+  };
+  if (!lit && from->isInteger() && (to->underlying()->isInteger() || to->kind == TypeKind::Subrange) && (!isa<CallExpr>(e) || isSizeOf(e))) {
     constEvalFailed_ = false;
     if (auto v = evalConst(e, Context{nullptr, &global_}); v && v->kind == ConstValue::Int && !v->isUnsignedBig) {
       LiteralExpr tmp;
@@ -318,6 +323,8 @@ bool SemaImpl::checkConversion(const Type* to, Expr* e, const char* what) {
             .range(r);
         return false;
       }
+      // CODESYS: a constant that fits converts silently (n : INT := SIZEOF(buf)).
+      if (allows(DialectRule::ImplicitNarrowing) && to->underlying()->isInteger()) return true;
     }
   }
   Conv c = classify(from, to);
