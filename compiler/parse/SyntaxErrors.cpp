@@ -91,8 +91,15 @@ const char* const kStructureKeywords[] = {
 };
 
 // The structure keyword `text` looks like a misspelling of, or "".
+// Words of the textual SFC (IEC 61131-3 2.6): not misspellings of ST keywords.
+bool isSfcWord(std::string_view text) {
+  std::string up;
+  for (char c : text) up += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return up == "STEP" || up == "END_STEP" || up == "INITIAL_STEP" || up == "TRANSITION" || up == "END_TRANSITION";
+}
+
 std::string keywordTypo(std::string_view text) {
-  if (text.size() < 4) return "";
+  if (text.size() < 4 || isSfcWord(text)) return "";
   static const std::vector<std::string> kws(std::begin(kStructureKeywords), std::end(kStructureKeywords));
   std::string up;
   for (char c : text) if (c != '_') up += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -698,12 +705,21 @@ void repairDeclarationKeywordTypos(const SourceFile& file, LexedFile& lexed, Dia
   auto newlineBetween = [&](size_t a, size_t b) {   // b > a; offsets of the token ends/starts
     return file.text.find('\n', a) < b;
   };
+  bool sfcReported = false;
   for (size_t i = 0; i + 1 < toks.size(); ++i) {
     antlr4::Token* t = toks[i].get();
     if (t->getType() != STLexer::IDENTIFIER) continue;
     bool lineStart = i == 0 || newlineBetween(toks[i - 1]->getStopIndex() + 1, t->getStartIndex());
     if (!lineStart) continue;
     std::string written(file.text.substr(t->getStartIndex(), t->getStopIndex() + 1 - t->getStartIndex()));
+    // Textual SFC (STEP ... END_STEP, TRANSITION FROM ... TO ...): said once,
+    // plainly, instead of a cascade of syntax errors alone.
+    if (!sfcReported && isSfcWord(written) && toks[i + 1]->getType() == STLexer::IDENTIFIER) {
+      SourceRange r = rangeOf(file.id, t);
+      diags.error(r.begin, "Sequential Function Chart elements ('" + written + "') are not supported; stc compiles Structured Text", "unsupported")
+          .range(r);
+      sfcReported = true;
+    }
     std::string kw = keywordTypo(written);
     if (kw.empty()) continue;
     antlr4::Token* n = toks[i + 1].get();
