@@ -54,6 +54,8 @@ typeSpec
     | POINTER TO typeSpec                                                     # pointerType
     | ( REFERENCE TO | REF_TO ) typeSpec                                      # referenceType
     | qualifiedName LPAREN lo=expression RANGE hi=expression RPAREN           # subrangeType
+    // fb : FB_T(param := v): the arguments of FB_INIT (CODESYS V3).
+    | qualifiedName LPAREN structInitElement ( COMMA structInitElement )* RPAREN # fbInitType
     | qualifiedName ( LPAREN expression RPAREN | LBRACKET expression RBRACKET ) # sizedType
     | LPAREN enumValue ( COMMA enumValue )* RPAREN typeName?                 # inlineEnumType
     | qualifiedName                                                           # namedType

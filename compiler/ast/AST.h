@@ -196,6 +196,7 @@ struct StructInitExpr : Expr {
 
 // ---------------------------------------------------------------- type syntax
 struct VarDecl;
+struct StructInitExpr;
 
 struct EnumValueDecl {
   Ident name;
@@ -220,6 +221,7 @@ struct TypeRef : Node {
   QualifiedName structBase;                 // STRUCT EXTENDS
   const sema::Type* resolved = nullptr;
   const struct TypeDecl* aliasDecl = nullptr;   // Named: the TYPE declaration it names, if any (sema)
+  struct StructInitExpr* fbInitArgs = nullptr;  // Named: `fb : T(p := v)`, the FB_INIT arguments
 };
 
 // ---------------------------------------------------------------- statements

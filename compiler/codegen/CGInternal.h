@@ -137,8 +137,9 @@ public:
   // CGLifecycle.cpp
   std::map<std::pair<const Type*, Lifecycle>, bool> lifecycleMemo_;
   bool hasLifecycle(const Type* t, Lifecycle w);
-  void emitLifecycle(llvm::Value* obj, const Type* t, Lifecycle w, llvm::Value* initRetains);
-  void callLifecycleMethod(sema::Symbol* m, llvm::Value* self, llvm::Value* initRetains);
+  void emitLifecycle(llvm::Value* obj, const Type* t, Lifecycle w, llvm::Value* initRetains, const ast::StructInitExpr* args = nullptr);
+  void callLifecycleMethod(sema::Symbol* m, llvm::Value* self, llvm::Value* initRetains, const ast::StructInitExpr* args);
+  const ast::StructInitExpr* fbInitArguments(const ast::VarDecl* v);
   void emitLifecycleEntryPoints();
   void emitBodyInParts(FnState& st, const std::vector<ast::Stmt*>& body);   // inside foldScalar: errors mean "not a constant", not a diagnostic
   Address referenceSlot(const ast::Expr* e);

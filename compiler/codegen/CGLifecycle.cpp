@@ -33,6 +33,10 @@ Symbol* ownLifecycleMethod(const Symbol* fb, Lifecycle w) {
 
 }  // namespace
 
+const StructInitExpr* CodeGen::fbInitArguments(const VarDecl* v) {
+  return v && v->type ? v->type->fbInitArgs : nullptr;
+}
+
 bool CodeGen::hasLifecycle(const Type* t, Lifecycle w) {
   if (!t) return false;
   auto key = std::make_pair(t, w);
@@ -58,22 +62,36 @@ bool CodeGen::hasLifecycle(const Type* t, Lifecycle w) {
   return any;
 }
 
-void CodeGen::callLifecycleMethod(Symbol* m, llvm::Value* self, llvm::Value* initRetains) {
+void CodeGen::callLifecycleMethod(Symbol* m, llvm::Value* self, llvm::Value* initRetains, const StructInitExpr* args) {
   llvm::Function* f = functionFor(m);
-  std::vector<llvm::Value*> args;
+  std::vector<llvm::Value*> args_;
   llvm::FunctionType* ft = f->getFunctionType();
-  if (returnsIndirect(m)) args.push_back(b_.CreateAlloca(valueType(returnTypeOf(m))));
-  args.push_back(self);
+  if (returnsIndirect(m)) args_.push_back(b_.CreateAlloca(valueType(returnTypeOf(m))));
+  args_.push_back(self);
   for (Symbol* p : m->pou->params) {
-    llvm::Type* pt = ft->getParamType(static_cast<unsigned>(args.size()));
+    llvm::Type* pt = ft->getParamType(static_cast<unsigned>(args_.size()));
     std::string up = stc::asciiUpper(p->name);
-    if (up == "BINITRETAINS" && pt->isIntegerTy()) args.push_back(b_.CreateZExtOrTrunc(initRetains, pt));
-    else args.push_back(llvm::Constant::getNullValue(pt));   // bInCopyCode FALSE; user inputs: their type's zero
+    const Expr* given = nullptr;   // `fb : T(p := v)` at the instance's declaration
+    if (args)
+      for (const auto& f : args->fields)
+        if (stc::asciiUpper(f.name.name) == up) given = f.value;
+    if (isAggregate(p->type) || p->var->section != VarSection::Input) {
+      // Passed by address: a temporary with the value given, or the type's default.
+      Address tmp = temporary(p->type, p->name.c_str());
+      initAt(tmp, p->var->section == VarSection::Input ? given : nullptr);
+      args_.push_back(tmp.ptr);
+    } else if (given) {
+      args_.push_back(convert(emitValue(given, p->type), given->type, p->type, given));
+    } else if (up == "BINITRETAINS" && pt->isIntegerTy()) {
+      args_.push_back(b_.CreateZExtOrTrunc(initRetains, pt));
+    } else {
+      args_.push_back(llvm::Constant::getNullValue(pt));   // bInCopyCode FALSE; other inputs: their type's zero
+    }
   }
-  b_.CreateCall(f, args);
+  b_.CreateCall(f, args_);
 }
 
-void CodeGen::emitLifecycle(llvm::Value* obj, const Type* t, Lifecycle w, llvm::Value* initRetains) {
+void CodeGen::emitLifecycle(llvm::Value* obj, const Type* t, Lifecycle w, llvm::Value* initRetains, const StructInitExpr* args) {
   if (!hasLifecycle(t, w)) return;
   if (t->kind == TypeKind::Array) {
     uint64_t stride = alignUp(sizeOf(t->element), alignOf(t->element));
@@ -88,7 +106,7 @@ void CodeGen::emitLifecycle(llvm::Value* obj, const Type* t, Lifecycle w, llvm::
     i->addIncoming(b_.getInt64(0), pre);
     // FB_EXIT walks the elements from the last to the first.
     llvm::Value* index = w == Lifecycle::Init ? static_cast<llvm::Value*>(i) : b_.CreateSub(b_.getInt64(count - 1), i);
-    emitLifecycle(b_.CreateInBoundsGEP(i8_, obj, b_.CreateMul(index, b_.getInt64(stride))), t->element, w, initRetains);
+    emitLifecycle(b_.CreateInBoundsGEP(i8_, obj, b_.CreateMul(index, b_.getInt64(stride))), t->element, w, initRetains, args);
     llvm::Value* next = b_.CreateAdd(i, b_.getInt64(1));
     i->addIncoming(next, b_.GetInsertBlock());
     b_.CreateCondBr(b_.CreateICmpULT(next, b_.getInt64(count)), loop, done);
@@ -103,10 +121,11 @@ void CodeGen::emitLifecycle(llvm::Value* obj, const Type* t, Lifecycle w, llvm::
     for (Symbol* p = t->pou; p && p->pou; p = p->pou->base)
       if (Symbol* m = ownLifecycleMethod(p, w)) chain.insert(chain.begin(), m);
   if (w == Lifecycle::Init) {
-    for (const sema::FieldLayout* f : fields) emitLifecycle(b_.CreateConstInBoundsGEP1_64(i8_, obj, f->offset), f->type, w, initRetains);
-    for (Symbol* m : chain) callLifecycleMethod(m, obj, initRetains);
+    for (const sema::FieldLayout* f : fields)
+      emitLifecycle(b_.CreateConstInBoundsGEP1_64(i8_, obj, f->offset), f->type, w, initRetains, fbInitArguments(f->decl));
+    for (Symbol* m : chain) callLifecycleMethod(m, obj, initRetains, args);
   } else {
-    for (auto it = chain.rbegin(); it != chain.rend(); ++it) callLifecycleMethod(*it, obj, initRetains);
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) callLifecycleMethod(*it, obj, initRetains, nullptr);
     for (auto it = fields.rbegin(); it != fields.rend(); ++it)
       emitLifecycle(b_.CreateConstInBoundsGEP1_64(i8_, obj, (*it)->offset), (*it)->type, w, initRetains);
   }
@@ -126,7 +145,13 @@ void CodeGen::emitLifecycleEntryPoints() {
     for (const ImageRoot& r : out_.image.roots)
       if (!r.alias && r.bit < 0 && r.type && hasLifecycle(r.type, w)) roots.push_back(&r);
     if (w == Lifecycle::Exit) std::reverse(roots.begin(), roots.end());
-    for (const ImageRoot* r : roots) emitLifecycle(imageAddr(r->offset), r->type, w, flag);
+    for (const ImageRoot* r : roots) {
+      // A GVL instance's declaration carries its FB_INIT arguments.
+      const VarDecl* decl = nullptr;
+      for (const auto& [v, off] : imageOffsets_)
+        if (off == r->offset && v->resolvedType == r->type) decl = v;
+      emitLifecycle(imageAddr(r->offset), r->type, w, flag, w == Lifecycle::Init ? fbInitArguments(decl) : nullptr);
+    }
     if (blockOpen()) b_.CreateBr(st.returnBlock);
     b_.SetInsertPoint(st.returnBlock);
     b_.CreateRetVoid();

@@ -395,7 +395,7 @@ void CodeGen::lowerPou(Symbol* pou) {
   for (auto& [addr, v] : toInit) {
     initAt(addr, v->init, v);
     // A function block local of a function or method: FB_INIT on every call.
-    if (hasLifecycle(addr.type, Lifecycle::Init)) emitLifecycle(addr.ptr, addr.type, Lifecycle::Init, b_.getFalse());
+    if (hasLifecycle(addr.type, Lifecycle::Init)) emitLifecycle(addr.ptr, addr.type, Lifecycle::Init, b_.getFalse(), fbInitArguments(v));
   }
   st.returnBlock = llvm::BasicBlock::Create(ctx_, "return", f);
   bool hasTemps = false;

@@ -261,6 +261,21 @@ private:
       t->hi = expr(s->hi);
       return t;
     }
+    if (auto* f = as<P::FbInitTypeContext>(c)) {
+      TypeRef* t = ctx_.make<TypeRef>(TypeRef::Named);
+      t->range = range(f);
+      t->name = qname(f->qualifiedName());
+      auto* args = ctx_.make<StructInitExpr>();
+      args->range = range(f);
+      for (auto* el : f->structInitElement()) {
+        StructInitExpr::Field fld;
+        fld.name = ident(el->IDENTIFIER());
+        fld.value = initializer(el->initializer());
+        if (!fld.name.empty() && fld.value) args->fields.push_back(fld);
+      }
+      t->fbInitArgs = args;
+      return t->name.parts.empty() ? nullptr : t;
+    }
     if (auto* s = as<P::SizedTypeContext>(c)) {
       TypeRef* t = ctx_.make<TypeRef>(TypeRef::Sized);
       t->range = range(s);

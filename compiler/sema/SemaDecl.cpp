@@ -897,7 +897,8 @@ void SemaImpl::resolveSignature(Symbol* pou) {
   }
   // Initial values (after all variables, so they can refer to constants).
   for (VarBlock& b : d->varBlocks)
-    for (VarDecl* v : b.vars)
+    for (VarDecl* v : b.vars) {
+      if (v->type && v->type->fbInitArgs) checkFbInitArgs(v, ctx);
       if (v->init && v->resolvedType) {
         Symbol* s = pi.vars->lookupLocal(upperCase(v->name.name));
         if (!s || s->var != v) continue;
@@ -908,6 +909,47 @@ void SemaImpl::resolveSignature(Symbol* pou) {
         }
         checkVarInit(v, ctx);
       }
+    }
+}
+
+// `fb : T(p := v)`: the arguments of T's FB_INIT (CODESYS V3), matched by
+// name with the inputs of the FB_INIT methods along T's EXTENDS chain.
+void SemaImpl::checkFbInitArgs(VarDecl* v, const Context& ctx) {
+  StructInitExpr* args = v->type ? v->type->fbInitArgs : nullptr;
+  const Type* t = v->resolvedType;
+  if (!args || !t || t->isError()) return;
+  if (t->kind != TypeKind::FunctionBlock) {
+    diags_.error(args->range.begin, "arguments in a declaration are passed to FB_INIT of a function block; '" + t->name + "' is not one",
+                 "call-args").range(args->range);
+    return;
+  }
+  std::vector<Symbol*> inputs;
+  for (Symbol* p = t->pou; p && p->pou; p = p->pou->base) {
+    resolveSignature(p);
+    Symbol* m = p->pou->members->lookupLocal("FB_INIT");
+    if (!m || m->kind != Symbol::Method) continue;
+    resolveSignature(m);
+    for (Symbol* q : m->pou->params)
+      if (q->var && q->var->section == VarSection::Input) inputs.push_back(q);
+  }
+  if (inputs.empty()) {
+    diags_.error(args->range.begin, "'" + t->name + "' has no FB_INIT method to take these arguments", "call-args").range(args->range);
+    return;
+  }
+  for (auto& f : args->fields) {
+    Symbol* param = nullptr;
+    std::vector<std::string> names;
+    for (Symbol* q : inputs) {
+      names.push_back(q->name);
+      if (!param && upperCase(q->name) == upperCase(f.name.name)) param = q;
+    }
+    if (!param) {
+      errorWithHint(f.name.range, "FB_INIT of '" + t->name + "' has no input named '" + f.name.name + "'", f.name.name, names, "call-args");
+      continue;
+    }
+    checkExpr(f.value, ctx, param->type);
+    checkConversion(param->type, f.value, "argument");
+  }
 }
 
 // `r : REFERENCE TO T := x` and `r : REFERENCE TO T REF= x` bind r to x (as
@@ -952,11 +994,13 @@ void SemaImpl::resolveGlobals() {
     }
   }
   for (auto& [gd, ctx] : globalDecls_)
-    for (VarDecl* v : gd->block.vars)
+    for (VarDecl* v : gd->block.vars) {
+      if (v->type && v->type->fbInitArgs) checkFbInitArgs(v, ctx);
       if (v->init && v->resolvedType) checkVarInit(v, ctx);
       else if (gd->block.isConstant && !v->init && !v->hasEmptyInit && v->resolvedType && v->resolvedType->isElementary())
         diags_.warning(v->name.range.begin, "constant '" + v->name.name + "' has no initial value; it is always the default value",
                        "uninitialized-constant").range(v->name.range);
+    }
 }
 
 void SemaImpl::checkInheritance(Symbol* pou) {

@@ -78,6 +78,7 @@ public:
   void resolveSignature(Symbol* pou);
   void resolveVarDecl(VarDecl* v, Symbol* sym, const Context& ctx);
   void checkVarInit(VarDecl* v, const Context& ctx);
+  void checkFbInitArgs(VarDecl* v, const Context& ctx);
   void resolveGlobals();
   void checkConfiguration(ConfigurationDecl* c, const Context& ctx);
   void checkAddress(VarDecl* v);
