@@ -321,12 +321,16 @@ private:
   //   __x_in := x;  x := __x_in AND NOT __x_prev;  __x_prev := __x_in;
   // (F_EDGE: x := NOT __x_in AND __x_prev).
   void lowerEdgeInputs(PouDecl* d) {
+    // Only function blocks and programs keep state between calls (sema reports the rest).
+    if (d->pouKind != PouKind::FunctionBlock && d->pouKind != PouKind::Program) return;
     std::vector<Stmt*> front;
     VarBlock hidden;
     hidden.section = VarSection::Var;
     for (VarBlock& b : d->varBlocks)
       for (VarDecl* v : b.vars) {
-        if (v->edge == VarDecl::NoEdge) continue;
+        if (v->edge == VarDecl::NoEdge || !v->type || v->type->kind != TypeRef::Named || v->type->name.parts.size() != 1 ||
+            asciiUpper(v->type->name.parts[0].name) != "BOOL")
+          continue;
         SourceRange r = v->name.range;
         auto hiddenVar = [&](const std::string& suffix) {
           auto* h = ctx_.make<VarDecl>();

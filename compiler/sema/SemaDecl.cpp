@@ -863,6 +863,15 @@ void SemaImpl::resolveSignature(Symbol* pou) {
       }
       if (!declare(*pi.vars, s, "variable")) { v->used = true; continue; }
       resolveVarDecl(v, s, ctx);
+      if (v->edge != VarDecl::NoEdge) {
+        const char* q = v->edge == VarDecl::RisingEdge ? "R_EDGE" : "F_EDGE";
+        if (pou->kind != Symbol::FunctionBlock && pou->kind != Symbol::Program)
+          diags_.error(v->name.range.begin, std::string(q) + " needs state between calls: it is allowed on inputs of function blocks and programs, not of " +
+                                                withArticle(kindName(pou)), "invalid-section").range(v->name.range);
+        else if (s->type && !s->type->isError() && !s->type->isBool())
+          diags_.error(v->name.range.begin, std::string(q) + " input '" + v->name.name + "' must be BOOL, not '" + s->type->name + "'", "type-mismatch")
+              .range(v->name.range);
+      }
       if (v->section == VarSection::Input || v->section == VarSection::Output || v->section == VarSection::InOut)
         pi.params.push_back(s);
       if (v->section == VarSection::External) {
