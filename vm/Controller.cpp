@@ -14,6 +14,9 @@
 #include "vm/Native.h"
 #include "vm/Retain.h"
 #include "vm/Runtime.h"
+
+#include <csetjmp>
+#include "vm/Runtime.h"
 #include "vm/Scheduler.h"
 #include "vm/Trace.h"
 
@@ -133,11 +136,12 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
     }
   }
   bool warm = !opts.retainFile.empty() && restoreRetain(opts.retainFile, opts.cold, err);
-  {
-    // FB_INIT of every instance, after the retained values are back.
-    SessionScope scope(&sessionTable_);
-    __stc_budget = INT64_MAX / 2;
-    fbInit_(!warm);
+  // FB_INIT of every instance, after the retained values are back.  A fault
+  // there stops the run before the first cycle.
+  FaultInfo initFault;
+  if (!callOutsideTasks(fbInit_, !warm, initFault)) {
+    reportFault(initFault, "runtime fault in FB_INIT, before the first cycle: ");
+    return 3;
   }
   // Whether the natives must keep the {attribute 'mirrored'} structs current.
   bool mirroredRead = model_.readsMirrored || opts.observesMirrored;
@@ -277,11 +281,8 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   sigaction(SIGINT, &oldInt, nullptr);
   sigaction(SIGTERM, &oldTerm, nullptr);
   gStopTarget = nullptr;
-  {
-    SessionScope scope(&sessionTable_);
-    __stc_budget = INT64_MAX / 2;
-    fbExit_(false);
-  }
+  FaultInfo exitFault;
+  bool exitFaulted = !callOutsideTasks(fbExit_, false, exitFault);
   if (!opts.retainFile.empty() && !saveRetain(opts.retainFile, retainError))
     err << "stc: error: cannot save retain file: " << retainError << "\n";
   if (trace) {
@@ -303,7 +304,8 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
     }
   }
   reportFaults(err);
-  return sched_->faults().empty() ? 0 : 3;
+  if (exitFaulted) reportFault(exitFault, "runtime fault in FB_EXIT, after the last cycle: ");
+  return sched_->faults().empty() && !exitFaulted ? 0 : 3;
 }
 
 std::string Controller::valueText(const ValueRef& r) const {
@@ -375,24 +377,59 @@ bool Controller::restoreRetain(const std::string& file, bool coldStart, std::ost
   return restored;
 }
 
+namespace {
+struct OutsideRun {
+  jmp_buf jb;
+  FaultInfo info;
+};
+thread_local OutsideRun* tOutsideRun = nullptr;
+void onOutsideFault(FaultInfo&& info) {
+  tOutsideRun->info = std::move(info);
+  _longjmp(tOutsideRun->jb, 1);
+}
+}  // namespace
+
+// Runs generated code outside the tasks (FB_INIT, FB_EXIT); false with the
+// fault if it faulted (the generated frames are abandoned, as in a task).
+bool Controller::callOutsideTasks(void (*fn)(bool), bool arg, FaultInfo& fault) {
+  SessionScope scope(&sessionTable_);
+  __stc_budget = INT64_MAX / 2;
+  OutsideRun run;
+  OutsideRun* outer = tOutsideRun;
+  tOutsideRun = &run;
+  OutsideTaskFaultHandler prev = setOutsideTaskFaultHandler(onOutsideFault);
+  bool ok = true;
+  if (_setjmp(run.jb) == 0) {
+    fn(arg);
+  } else {
+    ok = false;
+    fault = std::move(run.info);
+  }
+  setOutsideTaskFaultHandler(prev);
+  tOutsideRun = outer;
+  return ok;
+}
+
 void Controller::reportFaults(std::ostream&) {
-  for (const TaskFault& f : sched_->faults()) {
-    const codegen::Site* site = f.info.site < module_->sites.size() ? &module_->sites[f.info.site] : nullptr;
-    std::string prefix = "runtime fault in task '" + sched_->task(f.task).name + "', cycle " + std::to_string(f.cycle) + " (" +
-                         formatIecTime(f.now) + "): ";
-    std::string msg = prefix + f.info.message;
-    if (site && !site->detail.empty() && f.info.code == "fault-index") msg += " of '" + site->detail + "'";
-    if (site && site->detail == "MOD" && f.info.code == "fault-division-by-zero") msg = prefix + "MOD by zero";
-    if (site && !site->detail.empty() && f.info.code == "fault-unbound-in-out") msg = prefix + "VAR_IN_OUT " + site->detail + " is not bound";
-    SourceLoc at = site && site->loc.valid() ? site->loc : site ? site->range.begin : SourceLoc{};
-    auto d = site && at.valid() ? diags_.error(at, msg, f.info.code.c_str()) : diags_.error(SourceLoc{}, msg, f.info.code.c_str());
-    if (site && at.valid()) d.range(site->range);
-    // The call chain: which caller passed the bad value.
-    for (uint32_t c : f.info.callers) {
-      const codegen::Site* cs = c < module_->sites.size() ? &module_->sites[c] : nullptr;
-      if (!cs || !cs->range.valid()) continue;
-      d.note(cs->range.begin, (cs->detail.empty() ? std::string("called") : "'" + cs->detail + "' called") + " from '" + cs->pou + "' here", cs->range);
-    }
+  for (const TaskFault& f : sched_->faults())
+    reportFault(f.info, "runtime fault in task '" + sched_->task(f.task).name + "', cycle " + std::to_string(f.cycle) + " (" +
+                            formatIecTime(f.now) + "): ");
+}
+
+void Controller::reportFault(const FaultInfo& info, const std::string& prefix) {
+  const codegen::Site* site = info.site < module_->sites.size() ? &module_->sites[info.site] : nullptr;
+  std::string msg = prefix + info.message;
+  if (site && !site->detail.empty() && info.code == "fault-index") msg += " of '" + site->detail + "'";
+  if (site && site->detail == "MOD" && info.code == "fault-division-by-zero") msg = prefix + "MOD by zero";
+  if (site && !site->detail.empty() && info.code == "fault-unbound-in-out") msg = prefix + "VAR_IN_OUT " + site->detail + " is not bound";
+  SourceLoc at = site && site->loc.valid() ? site->loc : site ? site->range.begin : SourceLoc{};
+  auto d = site && at.valid() ? diags_.error(at, msg, info.code.c_str()) : diags_.error(SourceLoc{}, msg, info.code.c_str());
+  if (site && at.valid()) d.range(site->range);
+  // The call chain: which caller passed the bad value.
+  for (uint32_t c : info.callers) {
+    const codegen::Site* cs = c < module_->sites.size() ? &module_->sites[c] : nullptr;
+    if (!cs || !cs->range.valid()) continue;
+    d.note(cs->range.begin, (cs->detail.empty() ? std::string("called") : "'" + cs->detail + "' called") + " from '" + cs->pou + "' here", cs->range);
   }
 }
 

@@ -25,6 +25,7 @@ class NativeLibrary;
 struct NativeEntry;
 class NativeSession;
 class Scheduler;
+struct FaultInfo;
 class TraceWriter;
 struct ValueRef;
 
@@ -84,6 +85,8 @@ public:
 private:
   const NativeEntry* findNative(std::string_view name) const;
   void reportFaults(std::ostream& err);
+  void reportFault(const FaultInfo& info, const std::string& prefix);
+  bool callOutsideTasks(void (*fn)(bool), bool arg, FaultInfo& fault);
   const sema::Model& model_;
   DiagnosticsEngine& diags_;
   std::unique_ptr<codegen::CompiledModule> module_;

@@ -19,6 +19,8 @@ using stc::codegen::FaultKind;
 
 namespace {
 
+thread_local stc::vm::OutsideTaskFaultHandler tOutsideHandler = nullptr;
+
 [[noreturn]] void raise(uint32_t site, FaultKind kind, std::string message) {
   stc::vm::FaultInfo info;
   info.site = site;
@@ -28,7 +30,8 @@ namespace {
   const stc::vm::CallChain& chain = *__stc_calls;
   for (uint32_t k = 0; k < chain.depth && k < 64; ++k) info.callers.push_back(chain.sites[(chain.depth - 1 - k) % 64]);
   if (auto* s = stc::vm::Scheduler::current()) s->fault(std::move(info));
-  // Outside a task (dynamic initialisation): nothing can be stopped safely.
+  if (tOutsideHandler) tOutsideHandler(std::move(info));
+  // Outside a task with no handler: nothing can be stopped safely.
   std::fprintf(stderr, "stc: runtime fault outside a task: %s\n", info.message.c_str());
   std::_Exit(3);
 }
@@ -38,6 +41,14 @@ size_t length(const C* s) {
   return std::char_traits<C>::length(s);   // strlen for STRING: vectorised by libc
 }
 }  // namespace
+
+namespace stc::vm {
+OutsideTaskFaultHandler setOutsideTaskFaultHandler(OutsideTaskFaultHandler h) {
+  OutsideTaskFaultHandler prev = tOutsideHandler;
+  tOutsideHandler = h;
+  return prev;
+}
+}  // namespace stc::vm
 
 extern "C" {
 

@@ -11,4 +11,12 @@ namespace stc::vm {
 // libc functions LLVM may emit calls to.
 std::map<std::string, void*> runtimeSymbols();
 
+struct FaultInfo;
+// Generated code that runs outside a task (dynamic initial values, FB_INIT,
+// FB_EXIT) reports a fault to this handler, which must not return (the
+// controller longjmps back to where it called the code); none: the process
+// ends with status 3.  Returns the previous handler.
+using OutsideTaskFaultHandler = void (*)(FaultInfo&& info);
+OutsideTaskFaultHandler setOutsideTaskFaultHandler(OutsideTaskFaultHandler h);
+
 }  // namespace stc::vm
