@@ -9,6 +9,7 @@
 #include "ast/AST.h"
 #include "basic/Text.h"
 #include "sema/Model.h"
+#include "vm/Fiber.h"
 #include "vm/Image.h"
 #include "vm/Jit.h"
 #include "vm/Native.h"
@@ -89,7 +90,13 @@ bool Controller::load(std::unique_ptr<codegen::CompiledModule> module, std::stri
   // that did not fold are computed now.
   SessionScope scope(&sessionTable_);
   __stc_budget = INT64_MAX / 2;
-  initDynamic_();
+  if (module_->lowMemory) {
+    Fiber low(size_t{1} << 20, true);   // the 32-bit address model: locals below 4 GiB
+    low.start([this] { initDynamic_(); });
+    low.resume();
+  } else {
+    initDynamic_();
+  }
   return true;
 }
 
@@ -152,6 +159,7 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   SchedulerOptions so;
   so.measure = opts.stats;
   so.realtime = opts.realtime;
+  so.lowMemory = module_->lowMemory;
   sched_ = std::make_unique<Scheduler>(so);
   for (size_t i = 0; i < module_->tasks.size(); ++i) {
     const codegen::TaskPlan& plan = module_->tasks[i];
@@ -399,11 +407,21 @@ bool Controller::callOutsideTasks(void (*fn)(bool), bool arg, FaultInfo& fault) 
   tOutsideRun = &run;
   OutsideTaskFaultHandler prev = setOutsideTaskFaultHandler(onOutsideFault);
   bool ok = true;
-  if (_setjmp(run.jb) == 0) {
-    fn(arg);
+  auto call = [&] {
+    if (_setjmp(run.jb) == 0) {
+      fn(arg);
+    } else {
+      ok = false;
+      fault = std::move(run.info);
+    }
+  };
+  if (module_->lowMemory) {
+    // The 32-bit address model: locals of FB_INIT/FB_EXIT must lie below 4 GiB too.
+    Fiber low(size_t{1} << 20, true);
+    low.start(call);
+    low.resume();
   } else {
-    ok = false;
-    fault = std::move(run.info);
+    call();
   }
   setOutsideTaskFaultHandler(prev);
   tOutsideRun = outer;

@@ -69,15 +69,32 @@ struct FiberAccess {
   }
 };
 
-Fiber::Fiber(size_t stackBytes) {
+void* mapLow(size_t bytes) {
+#ifdef MAP_32BIT
+  void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_32BIT | MAP_NORESERVE, -1, 0);
+#else
+  // Without MAP_32BIT: ask for an address below 4 GiB and check what came back.
+  void* p = mmap(reinterpret_cast<void*>(uintptr_t{0x10000000}), bytes, PROT_READ | PROT_WRITE,
+                 MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+#endif
+  if (p == MAP_FAILED) return nullptr;
+  if (reinterpret_cast<uintptr_t>(p) + bytes > (uintptr_t{1} << 32)) {
+    munmap(p, bytes);
+    return nullptr;
+  }
+  return p;
+}
+
+Fiber::Fiber(size_t stackBytes, bool lowMemory) {
   size_t page = static_cast<size_t>(sysconf(_SC_PAGESIZE));
   guardBytes_ = page;
   stackBytes_ = (stackBytes + page - 1) / page * page;
   if (stackBytes_ == 0) stackBytes_ = page;
   // NORESERVE: a 1 MiB stack costs only the pages a task really touches.
-  void* p = mmap(nullptr, guardBytes_ + stackBytes_, PROT_READ | PROT_WRITE,
-                 MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE | MAP_STACK, -1, 0);
-  if (p == MAP_FAILED) throw std::system_error(errno, std::generic_category(), "fiber stack");
+  void* p = lowMemory ? mapLow(guardBytes_ + stackBytes_)
+                      : mmap(nullptr, guardBytes_ + stackBytes_, PROT_READ | PROT_WRITE,
+                             MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE | MAP_STACK, -1, 0);
+  if (p == MAP_FAILED || !p) throw std::system_error(lowMemory ? ENOMEM : errno, std::generic_category(), "fiber stack");
   map_ = p;
   if (mprotect(map_, guardBytes_, PROT_NONE) != 0) {
     int e = errno;

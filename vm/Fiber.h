@@ -14,9 +14,14 @@
 
 namespace stc::vm {
 
+// Anonymous read-write memory below 4 GiB (the 32-bit address model: JIT
+// memory, task stacks), address space only until touched; null if none is left.
+void* mapLow(size_t bytes);
+
 class Fiber {
 public:
-  explicit Fiber(size_t stackBytes = 1 << 20);
+  // lowMemory: the stack lies below 4 GiB (the 32-bit address model).
+  explicit Fiber(size_t stackBytes = 1 << 20, bool lowMemory = false);
   ~Fiber();
   Fiber(const Fiber&) = delete;
   Fiber& operator=(const Fiber&) = delete;

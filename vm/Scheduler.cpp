@@ -298,7 +298,7 @@ void Scheduler::execute(Task& t) {
     t.state = State::Idle;
     return;
   }
-  if (!t.fiber) t.fiber = std::make_unique<Fiber>();
+  if (!t.fiber) t.fiber = std::make_unique<Fiber>(size_t{1} << 20, opts_.lowMemory);
   if (!t.fiber->running()) {
     // The fiber runs activation after activation, suspending in between, so
     // a new activation costs two context switches and no stack set-up.

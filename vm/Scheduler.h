@@ -116,6 +116,7 @@ struct TaskFault {
 struct SchedulerOptions {
   bool measure = false;              // clock_gettime around each slot
   bool realtime = false;             // sleep until start + T before tick T
+  bool lowMemory = false;            // fiber stacks below 4 GiB (the 32-bit address model)
 };
 
 class Scheduler {

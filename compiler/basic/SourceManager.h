@@ -38,6 +38,7 @@ struct SourceFile {
   std::string text;
   std::string original;      // the text before full-width rewriting, if any (shown in diagnostics)
   bool convertedFromLatin1 = false;
+  bool library = false;      // a library built into stc (standard FBs, motion): its types keep 8-byte pointers
   std::vector<uint32_t> lineStarts;  // filled lazily
 };
 

@@ -457,7 +457,7 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
     case sema::FIsValidRef: {
       Address slot = referenceSlot(argExpr(0));
       if (!slot.ptr) return unsupported();
-      return b_.CreateIsNotNull(b_.CreateAlignedLoad(ptrTy_, slot.ptr, llvm::MaybeAlign(8)));
+      return b_.CreateIsNotNull(loadAddress(slot.ptr, slot.type));
     }
     case sema::FBitAdr: {
       // The bit address of a variable located in the process image.

@@ -25,6 +25,7 @@ llvm::Value* CodeGen::load(Address a) {
     return b_.CreateTrunc(b_.CreateLShr(byte, static_cast<uint64_t>(a.bit)), i1_);
   }
   if (isAggregate(t)) return a.ptr;
+  if (narrowSlot(t)) return loadAddress(a.ptr, t);
   auto* l = b_.CreateAlignedLoad(memType(t), a.ptr, llvm::MaybeAlign(alignOf(t)));
   if (t->isBool()) return b_.CreateICmpNE(l, llvm::ConstantInt::get(i8_, 0));
   return l;
@@ -41,7 +42,27 @@ void CodeGen::store(Address a, llvm::Value* v) {
     return;
   }
   if (t->isBool()) v = b_.CreateZExt(v, i8_);
+  if (narrowSlot(t)) return storeAddress(a.ptr, t, v);
   b_.CreateAlignedStore(v, a.ptr, llvm::MaybeAlign(alignOf(t)));
+}
+
+bool CodeGen::narrowSlot(const Type* t) const {
+  t = t ? strip(t) : nullptr;
+  return t && (t->isPointer() || t->isReference()) && !t->wide;
+}
+
+// The program's memory lies below 4 GiB in the 32-bit model (vm/Jit.cpp, vm/Fiber.cpp),
+// so the 32-bit slot holds the whole address.
+llvm::Value* CodeGen::loadAddress(llvm::Value* slot, const Type* slotType) {
+  if (!narrowSlot(slotType)) return b_.CreateAlignedLoad(ptrTy_, slot, llvm::MaybeAlign(8));
+  llvm::Value* a = b_.CreateAlignedLoad(i32_, slot, llvm::MaybeAlign(4));
+  return b_.CreateIntToPtr(b_.CreateZExt(a, i64_), ptrTy_);
+}
+
+void CodeGen::storeAddress(llvm::Value* slot, const Type* slotType, llvm::Value* p) {
+  if (!narrowSlot(slotType)) { b_.CreateAlignedStore(p, slot, llvm::MaybeAlign(8)); return; }
+  if (p->getType()->isPointerTy()) p = b_.CreatePtrToInt(p, i64_);
+  b_.CreateAlignedStore(b_.CreateZExtOrTrunc(p, i32_), slot, llvm::MaybeAlign(4));
 }
 
 // ------------------------------------------------------------------ conversions
@@ -230,7 +251,7 @@ Address CodeGen::varAddr(const Symbol* s, const Expr* at) {
   }
   // REFERENCE TO variables dereference implicitly.
   if (a.type && a.type->isReference()) {
-    llvm::Value* p = b_.CreateAlignedLoad(ptrTy_, a.ptr, llvm::MaybeAlign(8));
+    llvm::Value* p = loadAddress(a.ptr, a.type);
     return Address{nullChecked(p, FaultKind::NullReference, at), a.type->element};
   }
   return a;
@@ -319,7 +340,7 @@ Address CodeGen::emitAddr(const Expr* e) {
       }
       Address a{p, f->type};
       if (f->type && f->type->isReference()) {
-        llvm::Value* r = b_.CreateAlignedLoad(ptrTy_, p, llvm::MaybeAlign(8));
+        llvm::Value* r = loadAddress(p, f->type);
         return Address{nullChecked(r, FaultKind::NullReference, e), f->type->element};
       }
       return a;

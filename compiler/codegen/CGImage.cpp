@@ -302,7 +302,7 @@ llvm::Constant* CodeGen::bufferConstant(const ConstBuffer& buf, llvm::Type** tyO
   for (auto& [off, c] : buf.relocs) {
     bytes(pos, off);
     parts.push_back(c);
-    pos = off + 8;
+    pos = off + (c->getType()->isIntegerTy(32) ? 4 : 8);
   }
   bytes(pos, buf.bytes.size());
   llvm::Constant* c = llvm::ConstantStruct::getAnon(ctx_, parts, /*packed=*/true);
@@ -353,7 +353,8 @@ void CodeGen::writeScalar(ConstBuffer& buf, uint64_t off, const Type* t, llvm::C
   } else if (llvm::isa<llvm::ConstantPointerNull>(c) || c->isNullValue()) {
     buf.put(off, 0, n);
   } else if (c->getType()->isPointerTy()) {
-    buf.relocs[off] = c;
+    // A 4-byte slot holds the low address (the image lies below 4 GiB in the 32-bit model).
+    buf.relocs[off] = n == 4 ? llvm::ConstantExpr::getPtrToInt(c, i32_) : c;
   }
 }
 
@@ -518,7 +519,7 @@ void CodeGen::emitDynamicInit(llvm::Value* base, const DynamicInit& d) {
     fs_->selfType = d.ownerType;
   }
   llvm::Value* at = b_.CreateConstInBoundsGEP1_64(i8_, base, d.offset);
-  if (d.bind) b_.CreateAlignedStore(referenceTarget(d.expr), at, llvm::MaybeAlign(8));
+  if (d.bind) storeAddress(at, d.type, referenceTarget(d.expr));
   else assign(Address{at, d.type}, d.expr);
   fs_->self = savedSelf;
   fs_->selfType = savedType;
@@ -527,7 +528,7 @@ void CodeGen::emitDynamicInit(llvm::Value* base, const DynamicInit& d) {
 void CodeGen::initAt(Address dst, const Expr* init, const VarDecl* decl) {
   const Type* t = dst.type;
   if (init && decl && decl->bindsReference) {
-    b_.CreateAlignedStore(referenceTarget(init), dst.ptr, llvm::MaybeAlign(8));
+    storeAddress(dst.ptr, dst.type, referenceTarget(init));
     return;
   }
   if (!isAggregate(t) && init && !isa<ArrayInitExpr>(init) && !isa<StructInitExpr>(init)) {

@@ -154,6 +154,11 @@ public:
   Address emitAddr(const ast::Expr* e);                          // lvalue
   Address varAddr(const Symbol* s, const ast::Expr* at);
   llvm::Value* load(Address a);
+  // Pointer and reference slots: 4 bytes (an i32 address) in the 32-bit address model
+  // unless the type is wide (native libraries' structures), else 8.  SSA values are `ptr`.
+  bool narrowSlot(const Type* t) const;
+  llvm::Value* loadAddress(llvm::Value* slot, const Type* slotType);
+  void storeAddress(llvm::Value* slot, const Type* slotType, llvm::Value* p);
   void store(Address a, llvm::Value* v);                          // v in a.type's value type
   void assign(Address dst, const ast::Expr* src);                  // with conversion, strings, aggregates
   llvm::Value* convert(llvm::Value* v, const Type* from, const Type* to, const ast::Expr* at);

@@ -84,7 +84,7 @@ void CodeGen::emitStmt(const Stmt* s) {
         Address slot = referenceSlot(a->lhs);
         if (!slot.ptr) { error(a->lhs->range, "REF= needs a reference variable"); return; }
         llvm::Value* target = referenceTarget(a->rhs);
-        b_.CreateAlignedStore(target, slot.ptr, llvm::MaybeAlign(8));
+        storeAddress(slot.ptr, slot.type, target);
         return;
       }
       if (auto* m = dyn_cast<MemberExpr>(a->lhs); m && m->symbol && m->symbol->kind == Symbol::Property) {
@@ -443,7 +443,7 @@ Address CodeGen::referenceSlot(const Expr* e) {
 llvm::Value* CodeGen::referenceTarget(const Expr* e) {
   if (auto* lit = dyn_cast<LiteralExpr>(e); lit && lit->litKind == LiteralExpr::Int) return llvm::ConstantPointerNull::get(ptrTy_);
   if (e->type && (e->type->isPointer() || e->type->kind == TypeKind::Null)) return emitValue(e, nullptr);
-  if (Address slot = referenceSlot(e); slot.ptr) return b_.CreateAlignedLoad(ptrTy_, slot.ptr, llvm::MaybeAlign(8));
+  if (Address slot = referenceSlot(e); slot.ptr) return loadAddress(slot.ptr, slot.type);
   return emitAddr(e).ptr;
 }
 

@@ -126,6 +126,7 @@ llvm::Type* CodeGen::memType(const Type* t) {
   const Type* s = strip(t);
   if (s->isBool()) return i8_;
   if (isAggregate(s)) return llvm::ArrayType::get(i8_, sizeOf(s));
+  if (narrowSlot(s)) return i32_;
   return valueType(s);
 }
 
@@ -576,8 +577,10 @@ bool CodeGen::run(bool needTasks) {
     }
     out_.tasks.push_back(plan);
   }
+  out_.lowMemory = model_.addressBits == 32;
+  // 32-bit model: every task runs on a fiber, whose stack lies below 4 GiB (ADR of a local).
   for (TaskPlan& t : out_.tasks)
-    for (const std::string& e : t.entries) t.mayBlock = t.mayBlock || maySuspend(mod_.getFunction(e));
+    for (const std::string& e : t.entries) t.mayBlock = t.mayBlock || out_.lowMemory || maySuspend(mod_.getFunction(e));
   if (errors_) return false;
   std::string err;
   llvm::raw_string_ostream os(err);

@@ -87,6 +87,9 @@ public:
   ImageMap image;
   std::vector<Site> sites;                  // index = site id (0 unused)
   std::vector<TaskPlan> tasks;
+  // The 32-bit address model: the JIT, the task stacks and everything else the
+  // program can point into must lie below 4 GiB (vm/Jit.cpp, vm/Fiber.cpp).
+  bool lowMemory = false;
   // POUs implemented in C++ (native bindings) that the module references.
   struct Native {
     std::string symbol;                     // "native.TON", "native.TEST_Sleep"

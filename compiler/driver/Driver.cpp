@@ -55,6 +55,7 @@ bool Compilation::addPath(const std::string& path) {
       return false;
     }
     if (pc.dialect) projectDialect_ = pc.dialect;
+    if (pc.addressBits) projectAddressBits_ = pc.addressBits;
     projectDefines_.insert(projectDefines_.end(), pc.defines.begin(), pc.defines.end());
     projectLibraries_.insert(projectLibraries_.end(), pc.libraries.begin(), pc.libraries.end());
     bool ok = true;
@@ -134,13 +135,16 @@ bool namesAny(const std::string& message, const std::set<std::string>& names) {
 bool Compilation::check(const CompileOptions& opts) {
   using clock = std::chrono::steady_clock;
   dialect_ = opts.dialect ? *opts.dialect : projectDialect_ ? *projectDialect_ : sema::Dialect::Codesys;
+  addressBits_ = opts.addressBits ? *opts.addressBits : projectAddressBits_ ? *projectAddressBits_ : 32;
+  // Built-in libraries are marked: their structures keep 8-byte pointer slots.
+  auto library = [&](uint32_t id) { sm_.file(id).library = true; return id; };
   ParseOptions popts;
   popts.defines = opts.defines;
   for (const std::string& d : projectDefines_) popts.defines.insert(asciiLower(d));
   std::vector<uint32_t> all;
   if (opts.includeStdlib)
-    for (size_t i = 0; i < kStdlibSourceCount; ++i) all.push_back(sm_.addBuffer(kStdlibSources[i].name, kStdlibSources[i].text));
-  for (const auto& [name, text] : opts.libraries) all.push_back(sm_.addBuffer(name, text));
+    for (size_t i = 0; i < kStdlibSourceCount; ++i) all.push_back(library(sm_.addBuffer(kStdlibSources[i].name, kStdlibSources[i].text)));
+  for (const auto& [name, text] : opts.libraries) all.push_back(library(sm_.addBuffer(name, text)));
   std::vector<std::string> libs = opts.libraryNames;
   libs.insert(libs.end(), projectLibraries_.begin(), projectLibraries_.end());
   // A library names the libraries it builds on in a comment line
@@ -164,7 +168,7 @@ bool Compilation::check(const CompileOptions& opts) {
   libs.erase(std::unique(libs.begin(), libs.end()), libs.end());
   for (const std::string& lib : libs)
     for (size_t i = 0; i < kLibrarySourceCount; ++i)
-      if (lib == kLibrarySources[i].library) all.push_back(sm_.addBuffer(kLibrarySources[i].name, kLibrarySources[i].text));
+      if (lib == kLibrarySources[i].library) all.push_back(library(sm_.addBuffer(kLibrarySources[i].name, kLibrarySources[i].text)));
   all.insert(all.end(), files_.begin(), files_.end());
 
   auto t0 = clock::now();
@@ -231,6 +235,7 @@ bool Compilation::check(const CompileOptions& opts) {
   stats_.parseSeconds = std::chrono::duration<double>(t1 - t0).count();
   sema::SemaOptions so;
   so.dialect = dialect_;
+  so.addressBits = addressBits_;
   if (!parsed) {
     // Like clang, go on after syntax errors: the declarations that parsed
     // cleanly are checked, so one run reports the missing ';' and the
@@ -287,6 +292,8 @@ CompileOptions optionsFromFileHeader(const std::string& text, CompileOptions bas
   while (in >> tok) {
     if (tok == "--dialect=codesys") base.dialect = sema::Dialect::Codesys;
     else if (tok == "--dialect=iec") base.dialect = sema::Dialect::IEC;
+    else if (tok == "--address-model=32") base.addressBits = 32;
+    else if (tok == "--address-model=64") base.addressBits = 64;
     else if (tok == "-D" && in >> tok) base.defines.insert(asciiLower(tok));
     else if (tok.rfind("-D", 0) == 0) base.defines.insert(asciiLower(tok.substr(2)));
   }

@@ -22,6 +22,7 @@ struct ProjectConfig {
   std::string root;                      // directory holding project.toml
   std::string name;
   std::optional<sema::Dialect> dialect;
+  std::optional<unsigned> addressBits;   // [build] address_model = 32 | 64
   std::vector<std::string> defines;
   std::vector<std::string> sources;      // absolute or root-relative paths, sorted
   std::vector<std::string> libraries;    // [project] libraries: optional libraries of stdlib-motion/ (e.g. codesys_sm3)
@@ -37,6 +38,7 @@ bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error)
 
 struct CompileOptions {
   std::optional<sema::Dialect> dialect;  // overrides the project's
+  std::optional<unsigned> addressBits;   // 32 or 64; overrides the project's (default 32)
   std::set<std::string> defines;         // lower-case
   bool includeStdlib = true;             // the IEC standard FB declarations
   // Declarations of native libraries (name, ST text) compiled in before the inputs.
@@ -73,6 +75,7 @@ public:
   // The checked program; null unless check() succeeded.
   const sema::Model* model() const;
   sema::Dialect dialect() const { return dialect_; }
+  unsigned addressBits() const { return addressBits_; }
 
 private:
   SourceManager sm_;
@@ -82,6 +85,8 @@ private:
   std::unique_ptr<sema::Sema> sema_;
   std::vector<uint32_t> files_;
   std::optional<sema::Dialect> projectDialect_;
+  std::optional<unsigned> projectAddressBits_;
+  unsigned addressBits_ = 32;
   std::vector<std::string> projectDefines_;
   std::vector<std::string> projectLibraries_;
   sema::Dialect dialect_ = sema::Dialect::Codesys;

@@ -37,6 +37,16 @@ bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error)
       return false;
     }
   }
+  if (const toml::node* am = tbl["build"]["address_model"].node()) {
+    std::optional<int64_t> bits = am->value<int64_t>();
+    if (!bits || (*bits != 32 && *bits != 64)) {
+      auto src = am->source();
+      error = manifest.string() + ":" + std::to_string(src.begin.line) + ":" + std::to_string(src.begin.column) +
+              ": [build] address_model must be 32 or 64";
+      return false;
+    }
+    out.addressBits = static_cast<unsigned>(*bits);
+  }
   if (auto* defs = tbl["build"]["defines"].as_array())
     for (auto& d : *defs)
       if (auto s = d.value<std::string>()) out.defines.push_back(*s);

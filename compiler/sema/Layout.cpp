@@ -31,7 +31,7 @@ uint64_t Layout::sizeOf(const Type* t) const {
   switch (t->kind) {
     case TypeKind::String: return t->length + 1;
     case TypeKind::WString: return 2 * (static_cast<uint64_t>(t->length) + 1);
-    case TypeKind::Pointer: case TypeKind::Reference: return 8;
+    case TypeKind::Pointer: case TypeKind::Reference: return t->wide ? 8 : 4;
     case TypeKind::Interface: return 16;   // {instance, itable}
     case TypeKind::Array: {
       uint64_t n = alignUp(sizeOf(t->element), alignOf(t->element));

@@ -28,6 +28,7 @@ struct Model {
   TypeContext* types = nullptr;
   const Layout* layout = nullptr;
   Dialect dialect = Dialect::IEC;
+  unsigned addressBits = 32;   // 32: user pointers are 4 bytes, the program's memory lies below 4 GiB
   // Every POU with a body: programs, functions, FBs, methods, actions,
   // property accessors, in declaration order.
   std::vector<Symbol*> pous;

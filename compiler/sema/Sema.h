@@ -12,6 +12,9 @@ namespace stc::sema {
 
 struct SemaOptions {
   Dialect dialect = Dialect::Codesys;   // what CODESYS V3 accepts; IEC is strict
+  // The address model: 32 = POINTER TO / REF_TO / REFERENCE TO take 4 bytes and the
+  // program's memory lies below 4 GiB, as on a 32-bit controller (docs/dialect.md).
+  unsigned addressBits = 32;
 };
 
 class SemaImpl;

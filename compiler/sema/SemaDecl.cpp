@@ -42,7 +42,9 @@ bool Sema::run() { return impl_->run(); }
 const Model& Sema::model() const { return impl_->model_; }
 
 SemaImpl::SemaImpl(ASTContext& ast, DiagnosticsEngine& diags, SemaOptions opts)
-    : ast_(ast), diags_(diags), opts_(opts) {}
+    : ast_(ast), diags_(diags), opts_(opts) {
+  types_.setAddress32(opts.addressBits == 32);
+}
 
 bool SemaImpl::run() {
   unsigned before = diags_.errorCount();
@@ -63,6 +65,7 @@ bool SemaImpl::run() {
   model_.types = &types_;
   model_.layout = &layout_;
   model_.dialect = opts_.dialect;
+  model_.addressBits = opts_.addressBits;
   model_.pous = pous_;
   for (auto& [g, ctx] : globalDecls_) model_.globalLists.push_back(g);
   for (auto& [c, ctx] : configs_) model_.configurations.push_back(c);
@@ -600,7 +603,9 @@ const Type* SemaImpl::resolveType(TypeRef* t, const Context& ctx, const std::str
       if (elem->isError()) break;
       // IEC REF_TO has pointer semantics (explicit ^, REF(x), NULL); CODESYS
       // REFERENCE TO is an alias that dereferences implicitly.
-      result = (t->kind == TypeRef::Pointer || t->refTo) ? types_.pointer(elem) : types_.reference(elem);
+      // The native libraries' structures keep 8-byte pointer slots in either address model.
+      bool wide = t->range.begin.valid() && diags_.sourceManager().file(t->range.begin.file).library;
+      result = (t->kind == TypeRef::Pointer || t->refTo) ? types_.pointer(elem, wide) : types_.reference(elem, wide);
       break;
     }
     case TypeRef::Enum: {

@@ -88,6 +88,7 @@ Conv SemaImpl::classify(const Type* from, const Type* to) const {
   }
   if (from->isPointer() || to->isPointer()) {
     if (from->isPointer() && to->isPointer()) {
+      if (from->element == to->element) return Conv::Exact;   // a 4- and an 8-byte slot (address models)
       const Type* te = to->element;
       if (te->kind == TypeKind::Byte || te->kind == TypeKind::Void) return Conv::Widening;
       return Conv::Pointer;
@@ -96,7 +97,7 @@ Conv SemaImpl::classify(const Type* from, const Type* to) const {
     return ((other->isInteger() || other->isBitString()) && other->bits() >= 32) ? Conv::Pointer : Conv::Incompatible;
   }
   if (from->isReference() || to->isReference()) {
-    if (from->isReference() && to->isReference()) return classify(from->element, to->element) == Conv::Exact ? Conv::Exact : Conv::Incompatible;
+    if (from->isReference() && to->isReference()) return from->element == to->element ? Conv::Exact : classify(from->element, to->element) == Conv::Exact ? Conv::Exact : Conv::Incompatible;
     return Conv::Incompatible;
   }
   if (isPouType(from) || isPouType(to)) {

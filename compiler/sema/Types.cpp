@@ -86,21 +86,25 @@ const Type* TypeContext::string(uint32_t length, bool wide) {
   return t;
 }
 
-const Type* TypeContext::pointer(const Type* to) {
-  auto it = pointers_.find(to);
+const Type* TypeContext::pointer(const Type* to, bool wide) {
+  wide = wide || !address32_;
+  auto it = pointers_.find({to, wide});
   if (it != pointers_.end()) return it->second;
   Type* t = make(TypeKind::Pointer, "POINTER TO " + to->name);
   t->element = to;
-  pointers_[to] = t;
+  t->wide = wide;
+  pointers_[{to, wide}] = t;
   return t;
 }
 
-const Type* TypeContext::reference(const Type* to) {
-  auto it = references_.find(to);
+const Type* TypeContext::reference(const Type* to, bool wide) {
+  wide = wide || !address32_;
+  auto it = references_.find({to, wide});
   if (it != references_.end()) return it->second;
   Type* t = make(TypeKind::Reference, "REFERENCE TO " + to->name);
   t->element = to;
-  references_[to] = t;
+  t->wide = wide;
+  references_[{to, wide}] = t;
   return t;
 }
 

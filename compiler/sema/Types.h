@@ -61,6 +61,10 @@ public:
   // Struct declared {attribute 'mirrored'}: natives refresh its fields from their own
   // state; they may skip that work while nobody reads them (Model::readsMirrored).
   bool mirrored = false;
+  // Pointer/Reference: stored in 8 bytes.  In the 32-bit address model user-visible
+  // pointers take 4 bytes (as on the controller); the native libraries' own
+  // structures keep 8-byte slots (their C++ side is compiled once).
+  bool wide = true;
 
   bool isError() const { return kind == TypeKind::Error; }
   bool isBool() const { return kind == TypeKind::Bool || kind == TypeKind::Bit; }
@@ -102,8 +106,12 @@ public:
   // Looks up an elementary type by (upper-case) IEC name; null if none.
   const Type* byName(const std::string& upperName) const;
   const Type* string(uint32_t length, bool wide);
-  const Type* pointer(const Type* to);
-  const Type* reference(const Type* to);
+  // Pointers and references: 4 bytes in the 32-bit address model unless `wide`.
+  const Type* pointer(const Type* to, bool wide = false);
+  const Type* reference(const Type* to, bool wide = false);
+  // The 32-bit address model (set before any pointer type is made): pointers are 4 bytes.
+  void setAddress32(bool on) { address32_ = on; }
+  bool address32() const { return address32_; }
   const Type* array(const Type* element, std::vector<Dim> dims);
   const Type* subrange(const Type* base, int64_t lo, int64_t hi);
   // Named derived types: created once, filled by the caller.
@@ -116,7 +124,8 @@ private:
   std::map<std::string, const Type*> byName_;
   const Type *error_, *void_, *null_;
   std::map<std::pair<uint32_t, bool>, const Type*> strings_;
-  std::map<const Type*, const Type*> pointers_, references_;
+  std::map<std::pair<const Type*, bool>, const Type*> pointers_, references_;
+  bool address32_ = false;
   std::map<std::string, const Type*> arrays_;
   std::map<std::string, const Type*> subranges_;
 };

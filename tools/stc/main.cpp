@@ -27,6 +27,7 @@ namespace {
 struct CheckArgs {
   std::vector<std::string> paths;
   std::string dialect;
+  unsigned addressModel = 0;   // 0: the project's (default 32)
   std::vector<std::string> defines;
   std::vector<std::string> libs;
   std::string format = "text";
@@ -44,6 +45,7 @@ CompileOptions compileOptions(const CheckArgs& a) {
   CompileOptions o;
   if (a.dialect == "codesys") o.dialect = sema::Dialect::Codesys;
   else if (a.dialect == "iec") o.dialect = sema::Dialect::IEC;
+  if (a.addressModel) o.addressBits = a.addressModel;
   o.parseThreads = a.jobs;
   for (const std::string& d : a.defines) o.defines.insert(asciiLower(d));
   o.libraryNames = a.libs;
@@ -330,6 +332,7 @@ int runRun(const BuildArgs& a) {
 void addCompileOptions(CLI::App* cmd, BuildArgs& a) {
   cmd->add_option("paths", a.paths, "Files (.st, .exp) or project directories")->required();
   cmd->add_option("--dialect", a.dialect, "Language dialect (default: the project's, else codesys)")->check(CLI::IsMember({"iec", "codesys"}));
+  cmd->add_option("--address-model", a.addressModel, "Pointer size in bits, 32 or 64 (default: the project's, else 32)")->check(CLI::IsMember({32u, 64u}));
   cmd->add_option("-D,--define", a.defines, "Define NAME for {IF defined(NAME)} pragmas")->allow_extra_args(false);
   cmd->add_option("--lib", a.libs, "Compile in an optional library (e.g. codesys_sm3)")->check(CLI::IsMember(availableLibraries()))->allow_extra_args(false);
   cmd->add_option("-O", a.opt, "Optimisation level 0-3 (-O0 .. -O3)")->check(CLI::IsMember({"0", "1", "2", "3"}));
@@ -353,6 +356,7 @@ int main(int argc, char** argv) {
   CLI::App* check = app.add_subcommand("check", "Parse and analyse ST sources or project directories");
   check->add_option("paths", ca.paths, "Files (.st, .exp) or project directories")->required();
   check->add_option("--dialect", ca.dialect, "Language dialect (default: the project's, else codesys)")->check(CLI::IsMember({"iec", "codesys"}));
+  check->add_option("--address-model", ca.addressModel, "Pointer size in bits, 32 or 64 (default: the project's, else 32)")->check(CLI::IsMember({32u, 64u}));
   check->add_option("-D,--define", ca.defines, "Define NAME for {IF defined(NAME)} pragmas")->allow_extra_args(false);
   check->add_option("--lib", ca.libs, "Compile in an optional library (e.g. codesys_sm3)")->check(CLI::IsMember(availableLibraries()))->allow_extra_args(false);
   check->add_option("--format", ca.format, "Diagnostic format")->check(CLI::IsMember({"text", "json"}));
