@@ -69,6 +69,7 @@ namespace stc::import {
 
 struct ExportOptions {
   std::string projectName = "stc";
+  std::string productVersion;   // stc's version, for <fileHeader>
 };
 
 // Writes the user's declarations (units of `files`) as PLCopen TC6 XML

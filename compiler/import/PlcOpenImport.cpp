@@ -125,8 +125,10 @@ private:
   // The <data name=".../NAME"> below `n`'s <addData>.
   pugi::xml_node data(const pugi::xml_node& n, std::string_view name) {
     std::string full = std::string(kCodesys) + std::string(name);
-    for (pugi::xml_node d : child(n, "addData").children())
-      if (d.type() == pugi::node_element && localName(d) == "data" && full == d.attribute("name").value()) return d;
+    for (pugi::xml_node ad : n.children())
+      if (ad.type() == pugi::node_element && localName(ad) == "addData")
+        for (pugi::xml_node d : ad.children())
+          if (d.type() == pugi::node_element && localName(d) == "data" && full == d.attribute("name").value()) return d;
     return {};
   }
 
@@ -403,8 +405,9 @@ private:
 
   // CODESYS methods, properties and actions (and interface members).
   void codesysMembers(const pugi::xml_node& n, const std::string& owner, bool prototypes) {
-    for (pugi::xml_node d : child(n, "addData").children()) {
-      if (d.type() != pugi::node_element || localName(d) != "data") continue;
+    for (pugi::xml_node ad : n.children())
+    for (pugi::xml_node d : ad.children()) {
+      if (localName(ad) != "addData" || d.type() != pugi::node_element || localName(d) != "data") continue;
       std::string_view dn = d.attribute("name").value();
       if (dn.rfind(kCodesys, 0) != 0) continue;
       dn.remove_prefix(kCodesys.size());
