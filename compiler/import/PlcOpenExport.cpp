@@ -171,7 +171,12 @@ public:
         break;
     }
     // REFERENCE TO, unions, FB_INIT arguments, ARRAY[*]: no TC6 element.
-    if (strict) unsupported(t->range, "the type '" + std::string(src(t->range)) + "'");
+    if (strict) {
+      std::string shown(src(t->range));
+      size_t nl = shown.find_first_of("\r\n");
+      if (nl != std::string::npos) shown = shown.substr(0, nl) + " ...";
+      unsupported(t->range, "the type '" + shown + "'");
+    }
     o += "<derived name=\"" + xmlEscape(src(t->range)) + "\"/>";
   }
 
