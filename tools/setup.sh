@@ -11,6 +11,7 @@ PACKAGES=(
   libeigen3-dev                           # motion kinematics (later issues)
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev libfmt-dev nlohmann-json3-dev
+  libpugixml-dev                          # PLCopen XML and TwinCAT import/export
   libjemalloc-dev                         # allocator for the front end
   clang-19 libclang-rt-19-dev             # libFuzzer target (tools/fuzz.sh)
 )

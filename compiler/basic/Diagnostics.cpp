@@ -247,14 +247,33 @@ void renderOne(const SourceManager& sm, const Diagnostic& d, std::string& out, b
 
 }  // namespace
 
-std::string renderText(const SourceManager& sm, const Diagnostic& d, bool color) {
+Diagnostic originalDiagnostic(const SourceManager& sm, const Diagnostic& d) {
+  Diagnostic m = d;
+  m.loc = sm.originalLoc(d.loc);
+  m.ranges.clear();
+  for (const SourceRange& r : d.ranges) {
+    SourceRange o = sm.originalRange(r);
+    if (o.valid()) m.ranges.push_back(o);
+  }
+  // A fix-it on synthesized text has nothing to edit in the original file.
+  m.fixits.clear();
+  for (const FixIt& f : d.fixits)
+    if (sm.isVerbatim(f.range.begin) && (!f.range.end.valid() || sm.isVerbatim(f.range.end)))
+      m.fixits.push_back({sm.originalRange(f.range), f.replacement});
+  for (Diagnostic& n : m.notes) n = originalDiagnostic(sm, n);
+  return m;
+}
+
+std::string renderText(const SourceManager& sm, const Diagnostic& diag, bool color) {
   std::string out;
+  Diagnostic d = originalDiagnostic(sm, diag);
   renderOne(sm, d, out, color);
   for (const Diagnostic& n : d.notes) renderOne(sm, n, out, color);
   return out;
 }
 
-static nlohmann::json toJson(const SourceManager& sm, const Diagnostic& d) {
+static nlohmann::json toJson(const SourceManager& sm, const Diagnostic& diag) {
+  Diagnostic d = originalDiagnostic(sm, diag);
   nlohmann::json j;
   j["severity"] = severityName(d.severity);
   j["message"] = d.message;

@@ -82,6 +82,10 @@ private:
   unsigned errors_ = 0, warnings_ = 0;
 };
 
+// The diagnostic with its locations mapped out of generated buffers
+// (SourceManager::originalLoc); the renderers apply it.
+Diagnostic originalDiagnostic(const SourceManager& sm, const Diagnostic& d);
+
 // Renderers.
 std::string renderText(const SourceManager& sm, const Diagnostic& d, bool color = false);
 std::string renderJson(const SourceManager& sm, const std::vector<Diagnostic>& diags);

@@ -67,6 +67,50 @@ uint32_t SourceManager::addBuffer(std::string path, std::string bytes) {
   return files_.back()->id;
 }
 
+uint32_t SourceManager::addGenerated(std::string path, std::string text, std::vector<SourceSegment> segments) {
+  auto f = std::make_unique<SourceFile>();
+  f->id = static_cast<uint32_t>(files_.size() + 1);
+  f->path = std::move(path);
+  f->text = std::move(text);
+  if (segments.empty() || segments.front().genBegin != 0) segments.insert(segments.begin(), SourceSegment{0, 0, 0, false});
+  f->segments = std::move(segments);
+  files_.push_back(std::move(f));
+  return files_.back()->id;
+}
+
+const SourceSegment* SourceManager::segmentOf(SourceLoc loc) const {
+  if (!loc.valid() || loc.file > files_.size()) return nullptr;
+  const auto& segs = files_[loc.file - 1]->segments;
+  if (segs.empty()) return nullptr;
+  auto it = std::upper_bound(segs.begin(), segs.end(), loc.offset,
+                             [](uint32_t off, const SourceSegment& s) { return off < s.genBegin; });
+  return &*(it - 1);
+}
+
+SourceLoc SourceManager::originalLoc(SourceLoc loc) const {
+  const SourceSegment* s = segmentOf(loc);
+  if (!s) return loc;
+  if (!s->file) return SourceLoc{};
+  return SourceLoc{s->file, s->verbatim ? s->offset + (loc.offset - s->genBegin) : s->offset};
+}
+
+SourceRange SourceManager::originalRange(SourceRange r) const {
+  if (!r.valid() || !segmentOf(r.begin)) return r;
+  SourceRange out(originalLoc(r.begin));
+  // The end is exclusive: map the last byte, so a range ending where a
+  // piece ends does not jump to the start of the next piece.
+  if (r.end.offset > r.begin.offset && r.end.file == r.begin.file) {
+    SourceLoc last = originalLoc(SourceLoc{r.end.file, r.end.offset - 1});
+    if (last.file == out.begin.file && last.offset >= out.begin.offset) out.end = SourceLoc{last.file, last.offset + 1};
+  }
+  return out;
+}
+
+bool SourceManager::isVerbatim(SourceLoc loc) const {
+  const SourceSegment* s = segmentOf(loc);
+  return !s || s->verbatim;
+}
+
 uint32_t SourceManager::loadFile(const std::string& path, std::string& error) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
@@ -97,6 +141,7 @@ void SourceManager::computeLines(SourceFile& f) const {
 }
 
 LineCol SourceManager::lineCol(SourceLoc loc) const {
+  loc = originalLoc(loc);
   if (!loc.valid() || loc.file > files_.size()) return {};
   SourceFile& f = *files_[loc.file - 1];
   computeLines(f);
@@ -129,6 +174,7 @@ unsigned SourceManager::lineCount(uint32_t file) const {
 }
 
 std::string_view SourceManager::lineText(SourceLoc loc) const {
+  loc = originalLoc(loc);
   if (!loc.valid()) return {};
   LineCol lc = lineCol(loc);
   const SourceFile& f = *files_[loc.file - 1];

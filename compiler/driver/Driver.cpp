@@ -13,6 +13,7 @@
 #include <string_view>
 
 #include "basic/Text.h"
+#include "import/Import.h"
 #include "parse/Parser.h"
 
 namespace fs = std::filesystem;
@@ -34,8 +35,32 @@ std::vector<std::string> availableLibraries() {
   return names;
 }
 
-Compilation::Compilation() : diags_(sm_), ast_(std::make_unique<ast::ASTContext>()) {}
+// Named global lists and TwinCAT tasks of imported files, applied after parsing.
+struct Compilation::Imports {
+  std::vector<std::pair<uint32_t, import::NamedGlobals>> globals;   // (generated file, list)
+  std::vector<import::TwinCatTask> tasks;
+  bool configurationAdded = false;
+};
+
+Compilation::Compilation() : diags_(sm_), ast_(std::make_unique<ast::ASTContext>()), imports_(std::make_unique<Imports>()) {}
 Compilation::~Compilation() = default;
+
+bool Compilation::addImported(const std::string& path) {
+  if (import::kindOf(path) == import::FileKind::TwinCatProject) {
+    std::vector<std::string> files;
+    bool ok = import::loadPlcProject(sm_, diags_, path, files);
+    for (const std::string& f : files) ok = addPath(f) && ok;
+    return ok;
+  }
+  import::ImportResult r;
+  bool ok = import::importFile(sm_, diags_, path, r);
+  if (r.file) {
+    files_.push_back(r.file);
+    for (const import::NamedGlobals& g : r.globals) imports_->globals.push_back({r.file, g});
+  }
+  imports_->tasks.insert(imports_->tasks.end(), r.tasks.begin(), r.tasks.end());
+  return ok;
+}
 
 void Compilation::addBuffer(const std::string& name, std::string text) {
   files_.push_back(sm_.addBuffer(name, std::move(text)));
@@ -47,7 +72,14 @@ bool Compilation::addPath(const std::string& path) {
     ProjectConfig pc;
     std::string error;
     if (!fs::exists(fs::path(path) / "project.toml")) {
-      diags_.error(SourceLoc{}, "'" + path + "' is a directory without project.toml; pass .st files or a project directory", "input");
+      // A TwinCAT PLC project directory: the one .plcproj in it.
+      std::vector<std::string> plcproj;
+      for (const fs::directory_entry& e : fs::directory_iterator(path, ec))
+        if (e.is_regular_file(ec) && import::kindOf(e.path().string()) == import::FileKind::TwinCatProject) plcproj.push_back(e.path().string());
+      if (plcproj.size() == 1) return addImported(plcproj.front());
+      diags_.error(SourceLoc{}, "'" + path + "' is a directory without project.toml" +
+                                    (plcproj.empty() ? std::string(" or .plcproj") : " and with several .plcproj files") +
+                                    "; pass source files or a project directory", "input");
       return false;
     }
     if (!loadProject(path, pc, error)) {
@@ -63,6 +95,7 @@ bool Compilation::addPath(const std::string& path) {
     if (!pc.tasksSource.empty()) addBuffer((fs::path(path) / "project.toml [[task]]").string(), pc.tasksSource);
     return ok;
   }
+  if (import::kindOf(path) != import::FileKind::None) return addImported(path);
   std::string error;
   uint32_t id = sm_.loadFile(path, error);
   if (!id) {
@@ -169,6 +202,11 @@ bool Compilation::check(const CompileOptions& opts) {
   for (const std::string& lib : libs)
     for (size_t i = 0; i < kLibrarySourceCount; ++i)
       if (lib == kLibrarySources[i].library) all.push_back(library(sm_.addBuffer(kLibrarySources[i].name, kLibrarySources[i].text)));
+  // TwinCAT tasks (.TcTTO) of all imported files form one CONFIGURATION.
+  if (!imports_->configurationAdded && !imports_->tasks.empty()) {
+    imports_->configurationAdded = true;
+    files_.push_back(import::twinCatConfiguration(sm_, imports_->tasks));
+  }
   all.insert(all.end(), files_.begin(), files_.end());
 
   auto t0 = clock::now();
@@ -216,6 +254,15 @@ bool Compilation::check(const CompileOptions& opts) {
     stats_.lines += sm_.lineCount(all[i]);
     ++stats_.files;
   }
+  // Imported global variable lists carry their names (<GVL Name=...>, <globalVars name=...>).
+  for (ast::SourceUnit& u : ast_->units())
+    for (ast::Decl* d : u.decls)
+      if (auto* g = ast::dyn_cast<ast::GlobalVarDecl>(d))
+        for (const auto& [file, named] : imports_->globals)
+          if (file == u.file && d->range.begin.offset >= named.begin && d->range.begin.offset < named.end && !named.name.empty()) {
+            g->listName.name = named.name;
+            g->listName.range = SourceRange(d->range.begin);
+          }
   // A file holding only VAR_GLOBAL blocks is a GVL named after the file.
   for (ast::SourceUnit& u : ast_->units()) {
     bool onlyGlobals = !u.decls.empty();
@@ -227,6 +274,7 @@ bool Compilation::check(const CompileOptions& opts) {
     if (!ident) continue;
     for (ast::Decl* d : u.decls) {
       auto* g = ast::cast<ast::GlobalVarDecl>(d);
+      if (!g->listName.name.empty()) continue;
       g->listName.name = stem;
       g->listName.range = SourceRange(SourceLoc{u.file, 0});
     }

@@ -33,7 +33,7 @@ struct ProjectConfig {
 // The names of the optional libraries built into the compiler.
 std::vector<std::string> availableLibraries();
 
-// Reads `dir/project.toml` and lists its sources (src/**/*.st, *.exp, *.txt).
+// Reads `dir/project.toml` and lists its sources (src/**/*.st, *.exp, *.txt, *.xml, *.TcPOU ...).
 bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error);
 
 struct CompileOptions {
@@ -64,8 +64,11 @@ public:
   DiagnosticsEngine& diags() { return diags_; }
   ast::ASTContext& ast() { return *ast_; }
 
-  // Adds inputs: .st/.exp/.txt files or project directories.
+  // Adds inputs: .st/.exp/.txt files, PLCopen XML and TwinCAT files
+  // (compiler/import), project directories (project.toml or one .plcproj).
   bool addPath(const std::string& path);
+  // The files added by addPath/addBuffer (not the libraries), in order.
+  const std::vector<uint32_t>& inputFiles() const { return files_; }
   // Adds an in-memory file (tests, benchmarks, fuzzing).
   void addBuffer(const std::string& name, std::string text);
 
@@ -84,6 +87,9 @@ private:
   // Owns the symbols and types the AST is annotated with: lives as long as the AST.
   std::unique_ptr<sema::Sema> sema_;
   std::vector<uint32_t> files_;
+  struct Imports;                       // what the XML importers found (Driver.cpp)
+  std::unique_ptr<Imports> imports_;
+  bool addImported(const std::string& path);
   std::optional<sema::Dialect> projectDialect_;
   std::optional<unsigned> projectAddressBits_;
   unsigned addressBits_ = 32;

@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include "driver/Driver.h"
+#include "import/Import.h"
 
 namespace fs = std::filesystem;
 
@@ -12,7 +13,8 @@ namespace stc {
 static bool isSourceFile(const fs::path& p) {
   std::string ext = p.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".st" || ext == ".exp" || ext == ".txt";
+  return ext == ".st" || ext == ".exp" || ext == ".txt" || import::kindOf(p.string()) == import::FileKind::PlcOpen ||
+         import::kindOf(p.string()) == import::FileKind::TwinCat;
 }
 
 bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error) {

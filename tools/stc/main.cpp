@@ -12,6 +12,7 @@
 #include "basic/Text.h"
 #include "codegen/CodeGen.h"
 #include "driver/Driver.h"
+#include "import/Import.h"
 #include "sema/Model.h"
 #include "vm/Controller.h"
 #include "vm/Time.h"
@@ -113,6 +114,37 @@ int runCheck(const CheckArgs& a) {
                              total > 0 ? s.lines / total : 0.0, s.llFallback ? " (LL fallback used)" : "");
   }
   return (ok && inputsOk && !c.diags().hasErrors()) ? 0 : 1;
+}
+
+struct ExportArgs : CheckArgs {
+  std::string plcopen;
+};
+
+// stc export --plcopen OUT.xml PATH...: the checked program as PLCopen XML.
+int runExport(const ExportArgs& a) {
+  Compilation c;
+  applyDiagOptions(a, c.diags());
+  bool inputsOk = true;
+  for (const std::string& p : a.paths) inputsOk = c.addPath(p) && inputsOk;
+  bool ok = false;
+  if (inputsOk) runWithLargeStack([&] { ok = c.check(compileOptions(a)); });
+  std::string xml;
+  if (ok) {
+    import::ExportOptions eo;
+    std::filesystem::path first(a.paths.front());
+    eo.projectName = (first.filename().empty() ? first.parent_path() : first).stem().string();
+    eo.productVersion = STC_VERSION;
+    ok = import::exportPlcOpen(c.sources(), c.ast(), c.inputFiles(), c.diags(), eo, xml);
+  }
+  bool color = a.color == "always" || (a.color == "auto" && isatty(STDERR_FILENO));
+  for (const Diagnostic& d : c.diags().diagnostics()) std::cerr << renderText(c.sources(), d, color);
+  if (!ok || !inputsOk || c.diags().hasErrors()) return 1;
+  FILE* f = a.plcopen == "-" ? stdout : std::fopen(a.plcopen.c_str(), "wb");
+  if (!f || std::fwrite(xml.data(), 1, xml.size(), f) != xml.size() || (f != stdout && std::fclose(f) != 0)) {
+    std::cerr << "stc: error: cannot write '" << a.plcopen << "'\n";
+    return 1;
+  }
+  return 0;
 }
 
 // Durations on the command line: T#1s500ms, 1s500ms, 10s, 250ms, 2m, 1h, 5us, 100ns.
@@ -330,7 +362,7 @@ int runRun(const BuildArgs& a) {
 }
 
 void addCompileOptions(CLI::App* cmd, BuildArgs& a) {
-  cmd->add_option("paths", a.paths, "Files (.st, .exp) or project directories")->required();
+  cmd->add_option("paths", a.paths, "Files (.st, .exp, PLCopen .xml, TwinCAT .TcPOU/.plcproj ...) or project directories")->required();
   cmd->add_option("--dialect", a.dialect, "Language dialect (default: the project's, else codesys)")->check(CLI::IsMember({"iec", "codesys"}));
   cmd->add_option("--address-model", a.addressModel, "Pointer size in bits, 32 or 64 (default: the project's, else 32)")->check(CLI::IsMember({32u, 64u}));
   cmd->add_option("-D,--define", a.defines, "Define NAME for {IF defined(NAME)} pragmas")->allow_extra_args(false);
@@ -354,7 +386,7 @@ int main(int argc, char** argv) {
 
   CheckArgs ca;
   CLI::App* check = app.add_subcommand("check", "Parse and analyse ST sources or project directories");
-  check->add_option("paths", ca.paths, "Files (.st, .exp) or project directories")->required();
+  check->add_option("paths", ca.paths, "Files (.st, .exp, PLCopen .xml, TwinCAT .TcPOU/.plcproj ...) or project directories")->required();
   check->add_option("--dialect", ca.dialect, "Language dialect (default: the project's, else codesys)")->check(CLI::IsMember({"iec", "codesys"}));
   check->add_option("--address-model", ca.addressModel, "Pointer size in bits, 32 or 64 (default: the project's, else 32)")->check(CLI::IsMember({32u, 64u}));
   check->add_option("-D,--define", ca.defines, "Define NAME for {IF defined(NAME)} pragmas")->allow_extra_args(false);
@@ -394,6 +426,16 @@ int main(int argc, char** argv) {
   run->add_option("--retain-every", ra.retainEvery, "Also save the retain file every DUR of simulated time");
   run->add_flag("--cold", ra.cold, "Cold start: restore only PERSISTENT variables");
 
+  ExportArgs ea;
+  CLI::App* exp = app.add_subcommand("export", "Write the checked program as PLCopen XML (CODESYS, Beremiz, TwinCAT import it)");
+  exp->add_option("paths", ea.paths, "Files (.st, .exp, .xml, .TcPOU ...) or project directories")->required();
+  exp->add_option("--plcopen", ea.plcopen, "Output file: PLCopen TC6 XML v2.01 ('-' = stdout)")->required();
+  exp->add_option("--dialect", ea.dialect, "Language dialect (default: the project's, else codesys)")->check(CLI::IsMember({"iec", "codesys"}));
+  exp->add_option("-D,--define", ea.defines, "Define NAME for {IF defined(NAME)} pragmas")->allow_extra_args(false);
+  exp->add_option("--lib", ea.libs, "Compile in an optional library (e.g. codesys_sm3)")->check(CLI::IsMember(availableLibraries()))->allow_extra_args(false);
+  exp->add_option("--color", ea.color, "Colour diagnostics")->check(CLI::IsMember({"auto", "always", "never"}));
+  exp->add_flag("-w,--no-warnings", ea.noWarnings, "Suppress all warnings");
+
   tools::TestArgs ta;
   CLI::App* test = app.add_subcommand("test", "Run the scenarios of projects and compare them with their golden traces");
   test->add_option("paths", ta.paths, "Project directories (default: .)");
@@ -415,6 +457,7 @@ int main(int argc, char** argv) {
   }
   if (check->parsed()) return runCheck(ca);
   if (build->parsed()) return runBuild(ba);
+  if (exp->parsed()) return runExport(ea);
   if (pc.cmd->parsed()) return pc.run();
   ra.cyclesGiven = cyc->count() > 0;
   if (run->parsed()) return runRun(ra);
