@@ -59,7 +59,9 @@ bool Compilation::addImported(const std::string& path) {
     for (const import::NamedGlobals& g : r.globals) imports_->globals.push_back({r.file, g});
   }
   imports_->tasks.insert(imports_->tasks.end(), r.tasks.begin(), r.tasks.end());
-  return ok;
+  // A file that imported with errors (an LD POU, an unknown element) still yields
+  // its ST: checking goes on, so one run reports those errors and the others.
+  return ok || r.file != 0;
 }
 
 void Compilation::addBuffer(const std::string& name, std::string text) {
