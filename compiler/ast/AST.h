@@ -329,6 +329,12 @@ struct VarDecl : Node {
   // Filled by sema.
   const sema::Type* resolvedType = nullptr;
   bool used = false;
+  // A constant whose value is its initialiser: VAR CONSTANT, VAR_GLOBAL CONSTANT.
+  // VAR_INPUT CONSTANT is not: it is an input the POU may not write, and callers
+  // pass it like any input (CODESYS; OSCAT's setup parameters).
+  bool isFoldableConstant() const {
+    return isConstant && init && section != VarSection::Input && section != VarSection::InOut;
+  }
 };
 
 struct VarBlock {

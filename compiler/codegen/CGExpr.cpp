@@ -494,7 +494,7 @@ llvm::Value* CodeGen::emitRaw(const Expr* e) {
       if (s->kind == Symbol::Variable) {
         const VarDecl* v = (s->aliasOf ? s->aliasOf : s)->var;
         // Reads of a foldable constant are immediates.
-        if (v && v->isConstant && v->init && v->resolvedType && !isAggregate(v->resolvedType) && !isa<ArrayInitExpr>(v->init) &&
+        if (v && v->isFoldableConstant() && v->resolvedType && !isAggregate(v->resolvedType) && !isa<ArrayInitExpr>(v->init) &&
             !isa<StructInitExpr>(v->init))
           return emitValue(v->init, v->resolvedType);
         if (v && v->resolvedType && !isAggregate(v->resolvedType)) {
@@ -572,7 +572,15 @@ llvm::Value* CodeGen::emitCompare(BinaryOp op, llvm::Value* l, llvm::Value* r, c
   if (l->getType()->isPointerTy() || r->getType()->isPointerTy()) {
     if (!l->getType()->isPointerTy()) l = b_.CreateIntToPtr(l, ptrTy_);
     if (!r->getType()->isPointerTy()) r = b_.CreateIntToPtr(r, ptrTy_);
-    return op == BinaryOp::Eq ? b_.CreateICmpEQ(l, r) : b_.CreateICmpNE(l, r);
+    // Addresses compare as unsigned numbers (CODESYS: a pointer is an address).
+    switch (op) {
+      case BinaryOp::Eq: return b_.CreateICmpEQ(l, r);
+      case BinaryOp::Lt: return b_.CreateICmpULT(l, r);
+      case BinaryOp::Gt: return b_.CreateICmpUGT(l, r);
+      case BinaryOp::Le: return b_.CreateICmpULE(l, r);
+      case BinaryOp::Ge: return b_.CreateICmpUGE(l, r);
+      default: return b_.CreateICmpNE(l, r);
+    }
   }
   bool sgn = s->isSignedInt() || isTimeKind(s);
   switch (op) {

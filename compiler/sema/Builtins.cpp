@@ -376,7 +376,11 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
       auto ts = argTypes();
       for (size_t i = 0; i < 2; ++i)
         if (!ts[i]->underlying()->isNumeric()) return bad(a[i], "a number");
-      if (b.arg0 == FExpt) return ts[0]->isReal() ? ts[0] : T.elementary(TypeKind::LReal);
+      if (b.arg0 == FExpt) {
+        // An untyped base takes the exponent's REAL type (EXPT(10.0, e) with e : REAL is REAL).
+        if (S.isUntypedLiteral(a[0]) && ts[1]->kind == TypeKind::Real && !S.isUntypedLiteral(a[1])) return T.elementary(TypeKind::Real);
+        return ts[0]->isReal() ? ts[0] : T.elementary(TypeKind::LReal);
+      }
       return (ts[0]->kind == TypeKind::LReal || ts[1]->kind == TypeKind::LReal || !ts[0]->isReal() || !ts[1]->isReal())
                  ? T.elementary(TypeKind::LReal) : T.elementary(TypeKind::Real);
     }

@@ -37,7 +37,7 @@ std::optional<ConstValue> SemaImpl::evalConst(Expr* e, const Context& ctx) {
   }
   if (sym) {
     if (sym->kind == Symbol::EnumValue) { ConstValue v; v.i = sym->enumValue; return v; }
-    if (sym->kind == Symbol::Variable && sym->var && sym->var->isConstant && sym->var->init) {
+    if (sym->kind == Symbol::Variable && sym->var && sym->var->isFoldableConstant()) {
       auto* s = const_cast<Symbol*>(sym);
       if (s->cyclic) {
         constEvalFailed_ = true;
