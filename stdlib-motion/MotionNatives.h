@@ -149,7 +149,7 @@ public:
   // Cam data that ST points to must lie in the controller's static memory (never a stack frame).
   bool inImage(const void* p, uint64_t bytes) const {
     const auto* b = static_cast<const uint8_t*>(p);
-    return b && b >= imageBegin_ && bytes <= static_cast<uint64_t>(imageEnd_ - b);
+    return b && b >= imageBegin_ && b <= imageEnd_ && bytes <= static_cast<uint64_t>(imageEnd_ - b);
   }
   const std::string& filesDir() const { return cfg_.filesDir; }
 

@@ -314,7 +314,7 @@ std::string formatValue(const uint8_t* p, const Type* t, const sema::Layout& lay
         if (val == v) return t->name + "#" + name;
       return t->name + "#" + std::to_string(v);
     }
-    case TypeKind::Pointer: case TypeKind::Reference: return hex(readUnsigned(p, 8));
+    case TypeKind::Pointer: case TypeKind::Reference: return hex(readUnsigned(p, static_cast<unsigned>(layout.sizeOf(t))));
     case TypeKind::Interface: return hex(readUnsigned(p, 8));
     case TypeKind::Array: {
       uint64_t stride = layout.sizeOf(t->element);

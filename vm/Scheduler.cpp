@@ -155,7 +155,17 @@ void Scheduler::run(RunLimit limit) {
   } guard(this);
 
   if (opts_.realtime) wallStart_ = monotonicNs() - next_;
-  runTicks(until);
+  if (!opts_.lowMemory) {
+    runTicks(until);
+    return;
+  }
+  // The 32-bit address model: the tasks that run as plain calls need a stack
+  // below 4 GiB (ADR of a function local), so the whole loop runs on one.
+  if (!lowStack_) lowStack_ = std::make_unique<Fiber>(size_t{8} << 20, true);
+  struct Args { Scheduler* self; Time until; } args{this, until};
+  lowStack_->start([](void* p) { auto* a = static_cast<Args*>(p); a->self->runTicks(a->until); }, &args);
+  while (!lowStack_->resume()) {
+  }
 }
 
 // One slot of a due task.  Inlined into tickLoop: this is the per-cycle path

@@ -192,6 +192,7 @@ private:
 
   SchedulerOptions opts_;
   std::vector<std::unique_ptr<Task>> tasks_;
+  std::unique_ptr<Fiber> lowStack_;   // the loop's stack in the 32-bit address model
   std::vector<TaskStats> stats_;
   std::vector<TaskFault> faults_;
   struct Hook {

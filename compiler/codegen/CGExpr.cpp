@@ -451,6 +451,20 @@ llvm::Value* CodeGen::emitValue(const Expr* e, const Type* to) {
     if (wide && bytes.size() >= 2) v |= static_cast<uint64_t>(static_cast<unsigned char>(bytes[1])) << 8;
     return llvm::ConstantInt::get(valueType(to), v);
   }
+  if (to && widensIntermediate(e)) {
+    // The register-width temporary reaches a wider integer or a REAL as it is.
+    const Type* t = strip(to);
+    const Type* os = strip(cast<BinaryExpr>(e)->operandType ? cast<BinaryExpr>(e)->operandType : e->type);
+    if ((t->isInteger() || t->isBitString()) && t->bits() > strip(e->type)->bits()) {
+      llvm::Value* w = emitWideBinary(cast<BinaryExpr>(e));
+      llvm::Type* dt = valueType(t);
+      return os->isSignedInt() ? b_.CreateSExtOrTrunc(w, dt) : b_.CreateZExtOrTrunc(w, dt);
+    }
+    if (t->isReal()) {
+      llvm::Value* w = emitWideBinary(cast<BinaryExpr>(e));
+      return os->isSignedInt() ? b_.CreateSIToFP(w, valueType(t)) : b_.CreateUIToFP(w, valueType(t));
+    }
+  }
   llvm::Value* v = emitRaw(e);
   if (!to || !e->type) return v;
   if (auto* lit = dyn_cast<LiteralExpr>(e);
@@ -616,6 +630,15 @@ llvm::Value* CodeGen::emitBinary(const BinaryExpr* e) {
     return phi;
   }
   bool cmp = op >= BinaryOp::Lt && op <= BinaryOp::Ne;
+  if (widensIntermediate(e)) return b_.CreateTrunc(emitWideBinary(e), valueType(e->type));
+  if (cmp && registerBits_ && (os->isInteger() || os->isBitString()) && os->bits() < registerBits_ &&
+      (widensIntermediate(e->lhs) || widensIntermediate(e->rhs))) {
+    // (w + 1) = 0 compares the register-width temporary (CODESYS).
+    llvm::Value* l = emitWideInt(e->lhs, ot);
+    llvm::Value* r = emitWideInt(e->rhs, ot);
+    return emitCompare(op, l, r, os->isSignedInt() ? elementary(registerBits_ == 64 ? TypeKind::LInt : TypeKind::DInt)
+                                                   : elementary(registerBits_ == 64 ? TypeKind::ULInt : TypeKind::UDInt));
+  }
   // Strings compare through the runtime.
   if (cmp && os->isString()) {
     llvm::Value* l = emitValue(e->lhs, nullptr);
@@ -700,6 +723,40 @@ llvm::Value* CodeGen::emitBinary(const BinaryExpr* e) {
   }
   error(e->range, "operator not supported by the code generator yet");
   return llvm::UndefValue::get(l->getType());
+}
+
+bool CodeGen::widensIntermediate(const Expr* e) const {
+  auto* b = dyn_cast<BinaryExpr>(e);
+  if (!registerBits_ || !b || !b->type) return false;
+  if (b->op != BinaryOp::Add && b->op != BinaryOp::Sub && b->op != BinaryOp::Mul && b->op != BinaryOp::Div && b->op != BinaryOp::Mod)
+    return false;
+  const Type* rt = strip(b->type);
+  const Type* os = strip(b->operandType ? b->operandType : b->type);
+  if (!(rt->isInteger() || rt->isBitString()) || !(os->isInteger() || os->isBitString())) return false;
+  const Type* lt = b->lhs->type ? strip(b->lhs->type) : os;
+  const Type* r2 = b->rhs->type ? strip(b->rhs->type) : os;
+  if (lt->isPointer() || r2->isPointer() || isTimeKind(lt) || isTimeKind(r2)) return false;
+  return os->bits() < registerBits_;
+}
+
+llvm::Value* CodeGen::emitWideInt(const Expr* e, const Type* as) {
+  if (widensIntermediate(e)) return emitWideBinary(cast<BinaryExpr>(e));
+  llvm::Value* v = emitValue(e, as);
+  llvm::Type* wt = llvm::IntegerType::get(ctx_, registerBits_);
+  const Type* t = strip(as ? as : e->type);
+  return t->isSignedInt() ? b_.CreateSExtOrTrunc(v, wt) : b_.CreateZExtOrTrunc(v, wt);
+}
+
+llvm::Value* CodeGen::emitWideBinary(const BinaryExpr* e) {
+  const Type* os = strip(e->operandType ? e->operandType : e->type);
+  llvm::Value* l = emitWideInt(e->lhs, os);
+  llvm::Value* r = emitWideInt(e->rhs, os);
+  switch (e->op) {
+    case BinaryOp::Add: return b_.CreateAdd(l, r);
+    case BinaryOp::Sub: return b_.CreateSub(l, r);
+    case BinaryOp::Mul: return b_.CreateMul(l, r);
+    default: return intDivide(l, r, e->op == BinaryOp::Div, os->isSignedInt(), e);
+  }
 }
 
 // Integer division and MOD with the divisor checked.  MIN / -1 overflows

@@ -164,6 +164,12 @@ public:
   llvm::Value* convert(llvm::Value* v, const Type* from, const Type* to, const ast::Expr* at);
   llvm::Value* toBool(llvm::Value* v);
   llvm::Value* emitBinary(const ast::BinaryExpr* e);
+  // CODESYS integer temporaries (DialectRule::RegisterWidthTemporaries): + - * / MOD on
+  // integers narrower than the register are computed in the register width.
+  unsigned registerBits_ = 0;                  // 0: every operation in its type's width (IEC)
+  bool widensIntermediate(const ast::Expr* e) const;
+  llvm::Value* emitWideBinary(const ast::BinaryExpr* e);           // in the register width
+  llvm::Value* emitWideInt(const ast::Expr* e, const Type* as);    // e as `as`, extended to the register width
   llvm::Value* intDivide(llvm::Value* l, llvm::Value* r, bool isDiv, bool isSigned, const ast::Node* at);
   llvm::Value* emitCompare(ast::BinaryOp op, llvm::Value* l, llvm::Value* r, const Type* t);
   llvm::Value* emitStringLiteral(const ast::LiteralExpr* lit, const Type* t);

@@ -46,6 +46,8 @@ CodeGen::CodeGen(const sema::Model& model, const SourceManager& sm, DiagnosticsE
   i16_ = llvm::Type::getInt16Ty(ctx);
   i32_ = llvm::Type::getInt32Ty(ctx);
   i64_ = llvm::Type::getInt64Ty(ctx);
+  // CODESYS computes integer temporaries in the target's register width.
+  if (sema::dialectAllows(model.dialect, sema::DialectRule::RegisterWidthTemporaries)) registerBits_ = model.addressBits == 64 ? 64 : 32;
   out_.sites.emplace_back();   // site 0: unknown
   // A library (no PROGRAM to run) keeps every POU: with internal linkage the
   // optimiser would delete them all, since nothing calls them.
@@ -578,9 +580,8 @@ bool CodeGen::run(bool needTasks) {
     out_.tasks.push_back(plan);
   }
   out_.lowMemory = model_.addressBits == 32;
-  // 32-bit model: every task runs on a fiber, whose stack lies below 4 GiB (ADR of a local).
   for (TaskPlan& t : out_.tasks)
-    for (const std::string& e : t.entries) t.mayBlock = t.mayBlock || out_.lowMemory || maySuspend(mod_.getFunction(e));
+    for (const std::string& e : t.entries) t.mayBlock = t.mayBlock || maySuspend(mod_.getFunction(e));
   if (errors_) return false;
   std::string err;
   llvm::raw_string_ostream os(err);

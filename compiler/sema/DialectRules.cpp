@@ -31,6 +31,10 @@ const DialectRuleInfo kRules[] = {
     {R::StringInOutAnyLength, "STRING of any length to VAR_IN_OUT", false, true,
      "a STRING(n) variable is passed to a VAR_IN_OUT STRING(m) of another length"},
     {R::UnsignedNegation, "unary minus on unsigned values", false, true, "-x on UINT/WORD/... is the two's complement in the same type"},
+    {R::RegisterWidthTemporaries, "integer temporaries in the register width", false, true,
+     "+ - * / MOD on integers narrower than the target's registers (32 bits, or 64 with address_model = 64) compute in the register "
+     "width; only an assignment, a parameter or a conversion truncates: (i1 + i2) / 2 does not overflow, dw := w + 1 can be 65536, "
+     "(w + 1) = 0 is FALSE for w = 65535"},
 };
 static_assert(sizeof(kRules) / sizeof(kRules[0]) == static_cast<std::size_t>(DialectRule::Count_), "one entry per DialectRule");
 }  // namespace

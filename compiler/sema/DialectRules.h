@@ -24,6 +24,7 @@ enum class DialectRule : uint8_t {
   IntegerRealFunctions,    // SQRT(i), SIN(i) on integer variables
   StringInOutAnyLength,    // STRING(10) passed to VAR_IN_OUT s : STRING(80)
   UnsignedNegation,        // -w on UINT/WORD
+  RegisterWidthTemporaries,  // + - * / MOD on narrow integers computed in the register width (32/64 bits)
   Count_
 };
 
