@@ -787,6 +787,30 @@ const Type* SemaImpl::checkMember(MemberExpr* e, const Context& ctx, const Type*
         .range(e->base->range).fixit(SourceRange(e->base->range.end), "^");
     return types_.error();
   }
+  // dw.C_BIT: a bit index given by an integer constant (CODESYS V3).
+  if (const Type* u = bt->underlying(); u->isInteger() || u->isBitString()) {
+    Symbol* c = lookup(up, ctx);
+    const Type* ct = c && c->var ? (c->type ? c->type : c->var->resolvedType) : nullptr;
+    if (c && c->kind == Symbol::Variable && c->var && c->var->isFoldableConstant() && ct && ct->underlying()->isInteger()) {
+      markUsed(c);
+      NameExpr* ref = ast_.make<NameExpr>();
+      ref->ident = e->member;
+      ref->range = e->member.range;
+      ref->symbol = c;
+      ref->type = ct;
+      std::optional<ConstValue> v = evalConst(ref, ctx);
+      if (v && v->i >= 0 && static_cast<uint64_t>(v->i) < u->bits()) {
+        e->access = MemberExpr::Bit;
+        e->bitIndex = static_cast<unsigned>(v->i);
+        return types_.elementary(TypeKind::Bool);
+      }
+      if (v) {
+        diags_.error(e->member.range.begin, "bit index " + std::to_string(v->i) + " ('" + e->member.name + "') is out of range for '" +
+                                                bt->name + "' (" + std::to_string(u->bits()) + " bits)", "index-range").range(e->member.range);
+        return types_.error();
+      }
+    }
+  }
   diags_.error(e->member.range.begin, "a value of type '" + bt->name + "' has no members", "no-member").range(e->range);
   return types_.error();
 }
