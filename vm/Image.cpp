@@ -331,7 +331,10 @@ std::string formatValue(const uint8_t* p, const Type* t, const sema::Layout& lay
       for (const sema::FieldLayout& f : layout.of(t).fields) {
         if (!f.type) continue;   // the vptr
         if (isInternalField(t, f)) continue;   // the native implementation's binding
-        out += (first ? "" : ", ") + f.name + " := " + (f.indirect ? hex(readUnsigned(p + f.offset, 8)) : formatValue(p + f.offset, f.type, layout));
+        out += (first ? "" : ", ") + f.name + " := " +
+               (f.indirect ? hex(readUnsigned(p + f.offset, 8))
+                : f.bit >= 0 ? std::string((p[f.offset] >> f.bit) & 1 ? "TRUE" : "FALSE")
+                             : formatValue(p + f.offset, f.type, layout));
         first = false;
       }
       return out + ")";
@@ -448,6 +451,7 @@ bool resolvePath(const codegen::ImageMap& map, const sema::Layout& layout, const
     }
     off += f->offset;
     t = f->type;
+    out.bit = f->bit;   // a packed BIT member
     if (!applyIndex(segs[k])) return false;
   }
   out.offset = off;

@@ -338,7 +338,7 @@ Address CodeGen::emitAddr(const Expr* e) {
         if (opts_.checks) check(b_.CreateIsNotNull(bound), FaultKind::UnboundInOut, site(e->range, "'" + f->name + "' of '" + bt->name + "'"));
         return Address{bound, f->type};
       }
-      Address a{p, f->type};
+      Address a{p, f->type, f->bit};
       if (f->type && f->type->isReference()) {
         llvm::Value* r = loadAddress(p, f->type);
         return Address{nullChecked(r, FaultKind::NullReference, e), f->type->element};

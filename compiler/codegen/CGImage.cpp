@@ -344,6 +344,15 @@ std::string CodeGen::literalBytes(const LiteralExpr* lit, bool wide) const {
   return out;
 }
 
+// A packed BIT member: sets or clears its bit (a constant initial value; BIT members
+// take constants only).
+void CodeGen::initBit(ConstBuffer& buf, uint64_t at, int bit, const Expr* init) {
+  llvm::Constant* c = nullptr;
+  bool on = init && foldScalar(init, elementary(TypeKind::Bool), c) && c && !c->isNullValue();
+  uint8_t mask = static_cast<uint8_t>(1u << bit);
+  if (at < buf.bytes.size()) buf.bytes[at] = on ? (buf.bytes[at] | mask) : (buf.bytes[at] & static_cast<uint8_t>(~mask));
+}
+
 void CodeGen::writeScalar(ConstBuffer& buf, uint64_t off, const Type* t, llvm::Constant* c) {
   unsigned n = static_cast<unsigned>(sizeOf(t));
   if (auto* ci = llvm::dyn_cast<llvm::ConstantInt>(c)) {
@@ -437,6 +446,10 @@ void CodeGen::defaultObject(ConstBuffer& buf, uint64_t off, const Type* t, std::
       size_t firstDyn = dyn.size();
       for (const sema::FieldLayout& f : l.fields) {
         if (!f.type || f.indirect) continue;
+        if (f.bit >= 0) {
+          initBit(buf, off + f.offset, f.bit, f.decl ? f.decl->init : nullptr);
+          continue;
+        }
         if (f.decl) initObject(buf, off + f.offset, f.type, f.decl->init, dyn, f.decl);
         else defaultObject(buf, off + f.offset, f.type, dyn);
         if (t->kind == TypeKind::Union) break;   // the first member decides
@@ -484,7 +497,8 @@ void CodeGen::initObject(ConstBuffer& buf, uint64_t off, const Type* t, const Ex
     if (!overlay) defaultObject(buf, off, t, dyn);
     for (const auto& f : si->fields) {
       const sema::FieldLayout* fl = layout_.field(t, f.name.name);
-      if (fl && f.value && !fl->indirect) initObject(buf, off + fl->offset, fl->type, f.value, dyn, nullptr, true);
+      if (fl && f.value && fl->bit >= 0) initBit(buf, off + fl->offset, fl->bit, f.value);
+      else if (fl && f.value && !fl->indirect) initObject(buf, off + fl->offset, fl->type, f.value, dyn, nullptr, true);
     }
     return;
   }

@@ -128,6 +128,7 @@ public:
   void defaultObject(ConstBuffer& buf, uint64_t off, const Type* t, std::vector<DynamicInit>& dyn);
   bool foldScalar(const ast::Expr* e, const Type* to, llvm::Constant*& out);
   void writeScalar(ConstBuffer& buf, uint64_t off, const Type* t, llvm::Constant* c);
+  void initBit(ConstBuffer& buf, uint64_t at, int bit, const ast::Expr* init);
   llvm::Constant* bufferConstant(const ConstBuffer& buf, llvm::Type** tyOut = nullptr);
   // Initialises memory at run time: constant part copied, the rest computed.
   void initAt(Address dst, const ast::Expr* init, const ast::VarDecl* decl = nullptr);

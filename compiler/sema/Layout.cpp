@@ -77,6 +77,20 @@ void Layout::computeAggregate(const Type* t, TypeLayout& out) const {
     uint64_t size = indirect ? 8 : sizeOf(type);
     uint64_t align = indirect ? 8 : alignOf(type);
     FieldLayout f{std::move(name), type, 0, decl, indirect};
+    if (t->kind == TypeKind::Struct && type && type->kind == TypeKind::Bit) {
+      // CODESYS packs consecutive BIT members into bytes (8 BITs: SIZEOF 1).
+      const FieldLayout* prev = out.fields.empty() ? nullptr : &out.fields.back();
+      if (prev && prev->bit >= 0 && prev->bit < 7) {
+        f.offset = prev->offset;
+        f.bit = prev->bit + 1;
+      } else {
+        f.offset = out.size;
+        f.bit = 0;
+        out.size += 1;
+      }
+      out.fields.push_back(std::move(f));
+      return;
+    }
     if (t->kind == TypeKind::Union) {
       out.size = std::max(out.size, size);
     } else {
@@ -152,7 +166,7 @@ std::string Layout::signature(const Type* t) const {
       const TypeLayout& l = of(u);
       std::string s = u->name + "{" + std::to_string(l.size) + ":";
       for (const FieldLayout& f : l.fields)
-        s += f.name + "@" + std::to_string(f.offset) + "=" + (f.indirect ? "&" : "") + (f.type ? signature(f.type) : "vptr") + ";";
+        s += f.name + "@" + std::to_string(f.offset) + (f.bit >= 0 ? "." + std::to_string(f.bit) : "") + "=" + (f.indirect ? "&" : "") + (f.type ? signature(f.type) : "vptr") + ";";
       return s + "}";
     }
     default: return u->name;

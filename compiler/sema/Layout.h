@@ -25,6 +25,7 @@ struct FieldLayout {
   uint64_t offset = 0;
   const ast::VarDecl* decl = nullptr;   // null for the vptr
   bool indirect = false;                // VAR_IN_OUT field: holds the address of the bound variable
+  int bit = -1;                         // a BIT member of a STRUCT: bit `bit` of the byte at `offset`
 };
 
 struct TypeLayout {
