@@ -511,6 +511,10 @@ static const Type* builtinCheck(SemaImpl& S, const Builtin& b, CallExpr* call, c
         S.diags_.error(a[0]->range.begin, "cannot take the address of " + why, "not-assignable").range(a[0]->range);
         return T.error();
       }
+      if (b.arg0 == FAdr && t->kind == TypeKind::Bit) {
+        S.diags_.error(a[0]->range.begin, "cannot take the address of a BIT member: it is one bit of a byte", "not-assignable").range(a[0]->range);
+        return T.error();
+      }
       if (decl && decl->var && decl->var->isConstant) {
         S.diags_.error(a[0]->range.begin, "cannot take the address of constant '" + decl->name + "'", "assign-constant")
             .range(a[0]->range).note(decl->declRange.begin, "declared CONSTANT here", decl->declRange);

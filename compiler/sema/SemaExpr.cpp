@@ -1135,6 +1135,10 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
       diags_.error(v->range.begin, "cannot pass constant '" + decl->name + "' to VAR_IN_OUT '" + p->name + "'", "assign-constant").range(v->range);
       return;
     }
+    if (at->kind == TypeKind::Bit) {
+      diags_.error(v->range.begin, "cannot pass a BIT member to VAR_IN_OUT '" + p->name + "': it is one bit of a byte", "in-out").range(v->range);
+      return;
+    }
     Conv c = classify(at, pt);
     bool ok = c == Conv::Exact || (c == Conv::Widening && (isPouType(at) || at->kind == TypeKind::Struct));
     if (allows(DialectRule::StringInOutAnyLength) && at->isString() && pt->isString() && at->kind == pt->kind) ok = true;
