@@ -84,14 +84,20 @@ int runVerify(const CheckArgs& a) {
   return failures ? 1 : 0;
 }
 
-int runCheck(const CheckArgs& a) {
-  if (a.verify) return runVerify(a);
-  Compilation c;
+// Adds the inputs and checks them with the command's options; false on any error.
+bool checkInputs(Compilation& c, const CheckArgs& a) {
   applyDiagOptions(a, c.diags());
   bool inputsOk = true;
   for (const std::string& p : a.paths) inputsOk = c.addPath(p) && inputsOk;
   bool ok = false;
   if (inputsOk) runWithLargeStack([&] { ok = c.check(compileOptions(a)); });
+  return ok;
+}
+
+int runCheck(const CheckArgs& a) {
+  if (a.verify) return runVerify(a);
+  Compilation c;
+  bool ok = checkInputs(c, a);
   const auto& diags = c.diags().diagnostics();
   if (a.format == "json") {
     std::cout << renderJson(c.sources(), diags);
@@ -113,7 +119,7 @@ int runCheck(const CheckArgs& a) {
                              s.files, s.lines, s.tokens, s.parseSeconds, s.lexSeconds, s.antlrSeconds, s.buildSeconds, s.semaSeconds,
                              total > 0 ? s.lines / total : 0.0, s.llFallback ? " (LL fallback used)" : "");
   }
-  return (ok && inputsOk && !c.diags().hasErrors()) ? 0 : 1;
+  return (ok && !c.diags().hasErrors()) ? 0 : 1;
 }
 
 struct ExportArgs : CheckArgs {
@@ -123,11 +129,7 @@ struct ExportArgs : CheckArgs {
 // stc export --plcopen OUT.xml PATH...: the checked program as PLCopen XML.
 int runExport(const ExportArgs& a) {
   Compilation c;
-  applyDiagOptions(a, c.diags());
-  bool inputsOk = true;
-  for (const std::string& p : a.paths) inputsOk = c.addPath(p) && inputsOk;
-  bool ok = false;
-  if (inputsOk) runWithLargeStack([&] { ok = c.check(compileOptions(a)); });
+  bool ok = checkInputs(c, a);
   std::string xml;
   if (ok) {
     import::ExportOptions eo;
@@ -138,7 +140,7 @@ int runExport(const ExportArgs& a) {
   }
   bool color = a.color == "always" || (a.color == "auto" && isatty(STDERR_FILENO));
   for (const Diagnostic& d : c.diags().diagnostics()) std::cerr << renderText(c.sources(), d, color);
-  if (!ok || !inputsOk || c.diags().hasErrors()) return 1;
+  if (!ok || c.diags().hasErrors()) return 1;
   FILE* f = a.plcopen == "-" ? stdout : std::fopen(a.plcopen.c_str(), "wb");
   if (!f || std::fwrite(xml.data(), 1, xml.size(), f) != xml.size() || (f != stdout && std::fclose(f) != 0)) {
     std::cerr << "stc: error: cannot write '" << a.plcopen << "'\n";
