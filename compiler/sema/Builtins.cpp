@@ -121,7 +121,8 @@ void SemaImpl::registerBuiltins() {
       if (i != j) add(std::string(kElementary[i]) + "_TO_" + kElementary[j], FConvert, i * 100 + j);
     add(std::string("TO_") + kElementary[i], FToGeneric, i);
   }
-  for (const char* t : {"SINT", "INT", "DINT", "LINT", "USINT", "UINT", "UDINT", "ULINT"}) {
+  // The bit-string forms (BYTE_TO_BCD, BCD_TO_WORD ...) are CODESYS Util / OSCAT names.
+  for (const char* t : {"SINT", "INT", "DINT", "LINT", "USINT", "UINT", "UDINT", "ULINT", "BYTE", "WORD", "DWORD", "LWORD"}) {
     add(std::string("BCD_TO_") + t, FFromBcd);
     add(std::string(t) + "_TO_BCD", FToBcd);
   }
