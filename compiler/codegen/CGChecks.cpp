@@ -4,6 +4,7 @@
 #include <llvm/IR/Constants.h>
 #include <llvm/IR/MDBuilder.h>
 
+#include "basic/Text.h"
 #include "codegen/CGInternal.h"
 
 namespace stc::codegen {
@@ -75,6 +76,52 @@ llvm::Value* CodeGen::checkedDivisor(llvm::Value* d, const ast::Node* at) {
   }
   // Without checks a zero divisor must still not raise SIGFPE: divide by 1.
   return b_.CreateSelect(nz, d, llvm::ConstantInt::get(d->getType(), 1));
+}
+
+Symbol* CodeGen::implicitCheck(const char* name) {
+  if (!implicitChecksFound_) {
+    implicitChecksFound_ = true;
+    for (Symbol* p : model_.pous) {
+      if (p->kind != Symbol::Function || p->pou->owner || !p->declRange.begin.valid() || sm_.file(p->declRange.begin.file).library) continue;
+      std::string up = asciiUpper(p->name);
+      static const char* const kNames[] = {"CHECKBOUNDS", "CHECKRANGESIGNED", "CHECKRANGEUNSIGNED", "CHECKDIVINT", "CHECKDIVDINT",
+                                           "CHECKDIVLINT", "CHECKDIVREAL", "CHECKDIVLREAL"};
+      bool known = false;
+      for (const char* k : kNames) known = known || up == k;
+      if (!known) continue;
+      // The signature CODESYS generates: scalar inputs, a scalar result of the same kind.
+      const Type* rt = returnTypeOf(p);
+      bool ok = rt && !isAggregate(rt) && rt->kind != TypeKind::Void && !p->pou->params.empty();
+      for (Symbol* q : p->pou->params) ok = ok && q->var && q->var->section == ast::VarSection::Input && q->type && !isAggregate(q->type);
+      if (ok) implicitChecks_[up] = p;
+    }
+  }
+  // Not inside a check function: it would call itself.
+  if (fs_ && fs_->pou)
+    for (auto& [n, s] : implicitChecks_)
+      if (s == fs_->pou) return nullptr;
+  auto it = implicitChecks_.find(name);
+  return it == implicitChecks_.end() ? nullptr : it->second;
+}
+
+// Calls a check function with `args` converted to its parameters; the result is
+// converted back to the type of args[0].
+llvm::Value* CodeGen::callImplicitCheck(Symbol* fn, std::vector<llvm::Value*> args, bool isSigned) {
+  llvm::Function* f = functionFor(fn);
+  llvm::FunctionType* ft = f->getFunctionType();
+  llvm::Type* back = args[0]->getType();
+  auto cast = [&](llvm::Value* v, llvm::Type* to) -> llvm::Value* {
+    if (v->getType() == to) return v;
+    if (v->getType()->isIntegerTy() && to->isIntegerTy()) return b_.CreateIntCast(v, to, isSigned);
+    if (v->getType()->isFloatingPointTy() && to->isFloatingPointTy()) return b_.CreateFPCast(v, to);
+    if (v->getType()->isIntegerTy() && to->isFloatingPointTy()) return isSigned ? b_.CreateSIToFP(v, to) : b_.CreateUIToFP(v, to);
+    if (v->getType()->isFloatingPointTy() && to->isIntegerTy()) return isSigned ? b_.CreateFPToSI(v, to) : b_.CreateFPToUI(v, to);
+    return v;
+  };
+  if (ft->getNumParams() != args.size()) return args[0];
+  for (size_t i = 0; i < args.size(); ++i) args[i] = cast(args[i], ft->getParamType(static_cast<unsigned>(i)));
+  llvm::Value* r = b_.CreateCall(f, args);
+  return cast(r, back);
 }
 
 llvm::Value* CodeGen::nullChecked(llvm::Value* p, FaultKind kind, const ast::Node* at) {

@@ -137,7 +137,13 @@ llvm::Value* CodeGen::convert(llvm::Value* v, const Type* from, const Type* to, 
       }
     }
   }
-  // Subrange targets are checked on the way in.
+  // Subrange targets are checked on the way in (first by the program's own check function).
+  if (to->kind == TypeKind::Subrange && r->getType()->isIntegerTy() && at) {
+    bool sgn = strip(to)->isSignedInt();
+    if (Symbol* cr = implicitCheck(sgn ? "CHECKRANGESIGNED" : "CHECKRANGEUNSIGNED"))
+      r = callImplicitCheck(cr, {r, llvm::ConstantInt::get(r->getType(), static_cast<uint64_t>(to->lo), sgn),
+                                 llvm::ConstantInt::get(r->getType(), static_cast<uint64_t>(to->hi), sgn)}, sgn);
+  }
   if (to->kind == TypeKind::Subrange && opts_.checks && r->getType()->isIntegerTy() && at) {
     const Type* base = strip(to);
     bool sgn = base->isSignedInt();
@@ -403,6 +409,8 @@ Address CodeGen::emitAddr(const Expr* e) {
       for (size_t k = 0; k < ix->indices.size(); ++k) {
         const sema::Dim& d = bt->dims[k];
         llvm::Value* i = emitValue(ix->indices[k], elementary(TypeKind::LInt));
+        if (Symbol* cb = implicitCheck("CHECKBOUNDS"))
+          i = callImplicitCheck(cb, {i, b_.getInt64(static_cast<uint64_t>(d.lo)), b_.getInt64(static_cast<uint64_t>(d.hi))}, true);
         if (opts_.checks) checkIndex(i, d.lo, d.hi, site(ix->indices[k], arrName));
         llvm::Value* rel = b_.CreateSub(i, b_.getInt64(static_cast<uint64_t>(d.lo)));
         offset = b_.CreateAdd(offset, b_.CreateMul(rel, b_.getInt64(strides[k])));
@@ -713,7 +721,10 @@ llvm::Value* CodeGen::emitBinary(const BinaryExpr* e) {
     case BinaryOp::Mul: return fp ? b_.CreateFMul(l, r) : b_.CreateMul(l, r);
     case BinaryOp::Div:
     case BinaryOp::Mod: {
-      if (fp) return op == BinaryOp::Div ? b_.CreateFDiv(l, r) : b_.CreateFRem(l, r);
+      if (fp) {
+        if (Symbol* cd = implicitCheck(r->getType()->isFloatTy() ? "CHECKDIVREAL" : "CHECKDIVLREAL")) r = callImplicitCheck(cd, {r}, true);
+        return op == BinaryOp::Div ? b_.CreateFDiv(l, r) : b_.CreateFRem(l, r);
+      }
       return intDivide(l, r, op == BinaryOp::Div, sgn, e);
     }
     case BinaryOp::And: return b_.CreateAnd(l, r);
@@ -762,6 +773,14 @@ llvm::Value* CodeGen::emitWideBinary(const BinaryExpr* e) {
 // Integer division and MOD with the divisor checked.  MIN / -1 overflows
 // (undefined in LLVM, SIGFPE on x86): IEC wraps to MIN; MOD -1 gives 0.
 llvm::Value* CodeGen::intDivide(llvm::Value* l, llvm::Value* r, bool isDiv, bool isSigned, const Node* at) {
+  // CheckDivInt / CheckDivDInt / CheckDivLInt by the divisor's declared size.
+  unsigned bits = r->getType()->getIntegerBitWidth();
+  if (auto* b = dynamic_cast<const BinaryExpr*>(at); b && b->rhs && b->rhs->type) {
+    const Type* dt = strip(b->operandType ? b->operandType : b->rhs->type);
+    if (dt->isInteger() || dt->isBitString()) bits = dt->bits();
+  }
+  if (Symbol* cd = implicitCheck(bits <= 16 ? "CHECKDIVINT" : bits <= 32 ? "CHECKDIVDINT" : "CHECKDIVLINT"))
+    r = callImplicitCheck(cd, {r}, isSigned);
   r = checkedDivisor(r, at);
   if (!isSigned) return isDiv ? b_.CreateUDiv(l, r) : b_.CreateURem(l, r);
   llvm::Value* minusOne = b_.CreateICmpEQ(r, llvm::ConstantInt::getSigned(r->getType(), -1));

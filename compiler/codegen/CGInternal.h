@@ -171,6 +171,14 @@ public:
   bool widensIntermediate(const ast::Expr* e) const;
   llvm::Value* emitWideBinary(const ast::BinaryExpr* e);           // in the register width
   llvm::Value* emitWideInt(const ast::Expr* e, const Type* as);    // e as `as`, extended to the register width
+  // CODESYS implicit check functions: a user FUNCTION named CheckBounds, CheckRangeSigned,
+  // CheckRangeUnsigned, CheckDivInt/DInt/LInt/Real/LReal is called where CODESYS calls it
+  // (an index, a value entering a subrange, a divisor) and its result used instead
+  // (not inside the check functions themselves).  Null if the program has none.
+  Symbol* implicitCheck(const char* name);
+  llvm::Value* callImplicitCheck(Symbol* fn, std::vector<llvm::Value*> args, bool isSigned);
+  std::map<std::string, Symbol*> implicitChecks_;
+  bool implicitChecksFound_ = false;
   llvm::Value* intDivide(llvm::Value* l, llvm::Value* r, bool isDiv, bool isSigned, const ast::Node* at);
   llvm::Value* emitCompare(ast::BinaryOp op, llvm::Value* l, llvm::Value* r, const Type* t);
   llvm::Value* emitStringLiteral(const ast::LiteralExpr* lit, const Type* t);
