@@ -54,6 +54,6 @@ cp "$tmp/p/main.st" "$tmp/p/src/"
 for f in fifo.cam escape.cam huge.cam; do
   printf '[build]\ndialect = "codesys"\n\n[[cam]]\nvar = "cam"\nfile = "%s"\n' "$f" > "$tmp/p/project.toml"
   if msg=$(timeout 20 "$stc" run "$tmp/p" --lib codesys_sm3 --cycles 1 2>&1); then echo "[[cam]] file = $f was accepted"; exit 1; fi
-  echo "$msg" | grep -q "cam file" || { echo "no cam-file error for $f: $msg"; exit 1; }
+  grep -q "cam file" <<< "$msg" || { echo "no cam-file error for $f: $msg"; exit 1; }
 done
 echo ok

@@ -2,7 +2,8 @@
 # Runtime checks appear in the IR by default and --no-checks removes them.
 set -euo pipefail
 stc=$1 src=$2
-"$stc" build --emit llvm -O0 -o - "$src" | grep -q "__stc_fault" || { echo "no check in the default IR"; exit 1; }
+ir=$("$stc" build --emit llvm -O0 -o - "$src")
+grep -q "__stc_fault" <<< "$ir" || { echo "no check in the default IR"; exit 1; }
 if "$stc" build --emit llvm -O0 --no-checks -o - "$src" | grep -q "call void @__stc_fault"; then
   echo "--no-checks left a check"; exit 1
 fi
