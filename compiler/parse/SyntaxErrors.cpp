@@ -720,10 +720,15 @@ void repairDeclarationKeywordTypos(const SourceFile& file, LexedFile& lexed, Dia
           .range(r);
       sfcReported = true;
     }
-    std::string kw = keywordTypo(written);
-    if (kw.empty()) continue;
+    // Only where a declaration keyword could stand (checked first: the edit distance to
+    // every keyword is what costs, and most lines start with a name followed by ':=' or '(').
     antlr4::Token* n = toks[i + 1].get();
     bool nextOnLine = n->getType() != antlr4::Token::EOF && !newlineBetween(t->getStopIndex() + 1, n->getStartIndex());
+    bool beginShape = nextOnLine && n->getType() == STLexer::IDENTIFIER;
+    bool aloneShape = !nextOnLine || n->getType() == STLexer::SEMI;
+    if (!beginShape && !aloneShape) continue;
+    std::string kw = keywordTypo(written);
+    if (kw.empty()) continue;
     bool fits = kBegin.count(kw) ? (nextOnLine && n->getType() == STLexer::IDENTIFIER)
                                  : kAlone.count(kw) && (!nextOnLine || n->getType() == STLexer::SEMI);
     size_t type = fits ? keywordTokenTypeOf(kw) : 0;
