@@ -16,6 +16,7 @@
 
 #include <llvm/Support/CommandLine.h>
 
+#include <cstdlib>
 #include <mutex>
 
 #include "codegen/CodeGenLLVM.h"
@@ -33,6 +34,11 @@ void initTargets() {
     // already removed what it would find.  Off for the JIT and objects alike.
     auto& opts = llvm::cl::getRegisteredOptions();
     if (auto it = opts.find("disable-machine-cse"); it != opts.end()) it->second->addOccurrence(0, "disable-machine-cse", "true");
+    // Developers: STC_LLVM_ARGS="-time-passes" (any LLVM option) while measuring.
+    if (std::getenv("STC_LLVM_ARGS")) {
+      const char* argv[] = {"stc"};
+      llvm::cl::ParseCommandLineOptions(1, argv, "", nullptr, "STC_LLVM_ARGS");
+    }
   });
 }
 }  // namespace
