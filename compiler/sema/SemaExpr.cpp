@@ -612,6 +612,7 @@ const Type* SemaImpl::checkName(NameExpr* e, const Context& ctx, const Type* exp
     case Symbol::Property: {
       resolveSignature(s);
       checkAccess(s, ctx, e->range);
+      if (!readingLhs_) recordCall(s, e->range);   // a read runs the GET accessor (recursion check)
       if (!readingLhs_ && !s->pou->decl->getter) {
         diags_.error(e->range.begin, "property '" + s->name + "' has no GET accessor and cannot be read", "not-a-value")
             .range(e->range).note(s->declRange.begin, "property declared here", s->declRange);
@@ -771,6 +772,7 @@ const Type* SemaImpl::checkMember(MemberExpr* e, const Context& ctx, const Type*
     if (s->kind == Symbol::Property) {
       resolveSignature(s);
       checkAccess(s, ctx, e->member.range);
+      if (!readingLhs_) recordCall(s, e->range);
       if (!readingLhs_ && !s->pou->decl->getter) {
         diags_.error(e->member.range.begin, "property '" + s->name + "' has no GET accessor and cannot be read", "not-a-value")
             .range(e->member.range).note(s->declRange.begin, "property declared here", s->declRange);

@@ -285,11 +285,21 @@ void SemaImpl::checkRecursion() {
   std::map<Symbol*, int> state;   // 0 new, 1 on stack, 2 done
   std::vector<std::pair<Symbol*, SourceRange>> stack;
   std::set<Symbol*> reported;
+  // A property read is a call of its GET accessor.
+  std::map<const PouDecl*, Symbol*> byDecl;
+  for (Symbol* p : pous_)
+    if (p->pou && p->pou->decl) byDecl[p->pou->decl] = p;
+  auto target = [&](Symbol* callee) {
+    if (callee->kind == Symbol::Property && callee->pou && callee->pou->decl && callee->pou->decl->getter)
+      if (auto it = byDecl.find(callee->pou->decl->getter); it != byDecl.end()) return it->second;
+    return callee;
+  };
   std::function<void(Symbol*)> dfs = [&](Symbol* s) {
     state[s] = 1;
     auto it = callGraph_.find(s);
     if (it != callGraph_.end()) {
-      for (auto& [callee, where] : it->second) {
+      for (auto [callee0, where] : it->second) {
+        Symbol* callee = target(callee0);
         if (state[callee] == 1) {
           if (reported.insert(callee).second) {
             auto d = diags_.error(where.begin, callee == s ? "'" + callee->name + "' calls itself; recursion is not allowed in IEC 61131-3"
