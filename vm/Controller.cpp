@@ -9,6 +9,7 @@
 #include "ast/AST.h"
 #include "basic/Text.h"
 #include "sema/Model.h"
+#include "vm/FaultSignals.h"
 #include "vm/Fiber.h"
 #include "vm/Image.h"
 #include "vm/Jit.h"
@@ -101,6 +102,8 @@ bool Controller::load(std::unique_ptr<codegen::CompiledModule> module, std::stri
 }
 
 int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err) {
+  // SIGSEGV & co. in a task become faults of that task (FB_INIT/FB_EXIT: of the run).
+  installFaultSignals();
   const sema::Layout& layout = *model_.layout;
   // Watches and traces are resolved before anything runs.
   std::vector<ValueRef> watches;
@@ -444,10 +447,17 @@ void Controller::reportFault(const FaultInfo& info, const std::string& prefix) {
   auto d = site && at.valid() ? diags_.error(at, msg, info.code.c_str()) : diags_.error(SourceLoc{}, msg, info.code.c_str());
   if (site && at.valid()) d.range(site->range);
   // The call chain: which caller passed the bad value.
-  for (uint32_t c : info.callers) {
+  // A run of the same call site (a recursion through an interface) is one note.
+  for (size_t k = 0; k < info.callers.size();) {
+    uint32_t c = info.callers[k];
+    size_t same = 1;
+    while (k + same < info.callers.size() && info.callers[k + same] == c) ++same;
+    k += same;
     const codegen::Site* cs = c < module_->sites.size() ? &module_->sites[c] : nullptr;
     if (!cs || !cs->range.valid()) continue;
-    d.note(cs->range.begin, (cs->detail.empty() ? std::string("called") : "'" + cs->detail + "' called") + " from '" + cs->pou + "' here", cs->range);
+    std::string text = (cs->detail.empty() ? std::string("called") : "'" + cs->detail + "' called") + " from '" + cs->pou + "' here";
+    if (same > 1) text += " (" + std::to_string(same) + (same == 64 ? "+" : "") + " times in a row)";
+    d.note(cs->range.begin, text, cs->range);
   }
 }
 

@@ -22,9 +22,18 @@ namespace {
 thread_local stc::vm::OutsideTaskFaultHandler tOutsideHandler = nullptr;
 
 [[noreturn]] void raise(uint32_t site, FaultKind kind, std::string message) {
+  stc::vm::raiseFault(site, stc::codegen::faultCode(kind), std::move(message));
+}
+
+}  // namespace
+
+uint32_t __stc_site = 0;
+
+namespace stc::vm {
+[[noreturn]] void raiseFault(uint32_t site, const char* code, std::string message) {
   stc::vm::FaultInfo info;
   info.site = site;
-  info.code = stc::codegen::faultCode(kind);
+  info.code = code;
   info.message = std::move(message);
   // The callers, innermost first, from the task's call chain.
   const stc::vm::CallChain& chain = *__stc_calls;
@@ -35,6 +44,9 @@ thread_local stc::vm::OutsideTaskFaultHandler tOutsideHandler = nullptr;
   std::fprintf(stderr, "stc: runtime fault outside a task: %s\n", info.message.c_str());
   std::_Exit(3);
 }
+}  // namespace stc::vm
+
+namespace {
 
 template <typename C>
 size_t length(const C* s) {
@@ -43,6 +55,7 @@ size_t length(const C* s) {
 }  // namespace
 
 namespace stc::vm {
+bool outsideTaskFaultHandlerSet() { return tOutsideHandler != nullptr; }
 OutsideTaskFaultHandler setOutsideTaskFaultHandler(OutsideTaskFaultHandler h) {
   OutsideTaskFaultHandler prev = tOutsideHandler;
   tOutsideHandler = h;
@@ -66,6 +79,9 @@ float __powisf2(float, int);
     case FaultKind::NullInterface: msg = "call through a NULL interface"; break;
     case FaultKind::UnboundInOut: msg = "VAR_IN_OUT is not bound"; break;
     case FaultKind::ForStepZero: msg = "FOR loop with step 0 would never end"; break;
+    case FaultKind::BadVtable:
+      msg = "call through a corrupted function block instance (its hidden vtable pointer is not one of the program's)";
+      break;
     default: break;
   }
   raise(site, k, msg);
@@ -432,6 +448,7 @@ std::map<std::string, void*> runtimeSymbols() {
   STC_SYM(__stc_wstr_len);
   m["__stc_budget"] = &__stc_budget;
   m["__stc_calls"] = &__stc_calls;
+  m["__stc_site"] = &__stc_site;
 #undef STC_SYM
   // What LLVM lowers intrinsics and loops to.
   m["memcpy"] = reinterpret_cast<void*>(static_cast<void* (*)(void*, const void*, size_t)>(&std::memcpy));

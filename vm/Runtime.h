@@ -2,6 +2,7 @@
 // strings), and the table of every symbol the JIT may bind.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 
@@ -18,5 +19,20 @@ struct FaultInfo;
 // ends with status 3.  Returns the previous handler.
 using OutsideTaskFaultHandler = void (*)(FaultInfo&& info);
 OutsideTaskFaultHandler setOutsideTaskFaultHandler(OutsideTaskFaultHandler h);
+// Whether a handler is set (generated code runs outside the tasks).
+bool outsideTaskFaultHandlerSet();
+
+// Reports a fault of the running task (or to the outside handler) with its callers
+// from the task's call chain; does not return.
+[[noreturn]] void raiseFault(uint32_t site, const char* code, std::string message);
+
+}  // namespace stc::vm
+
+// The site of the last operation that may touch memory through a pointer (written
+// by generated code before dereferences, MEMCPY and indirect calls): a hardware
+// fault there is reported at that site (vm/FaultSignals.cpp).
+extern "C" uint32_t __stc_site;
+
+namespace stc::vm {
 
 }  // namespace stc::vm

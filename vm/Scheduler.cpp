@@ -342,6 +342,8 @@ void Scheduler::recordFault(Task& t, FaultInfo info) {
   faults_.push_back({t.index, t.cycle, now_, std::move(info)});
 }
 
+bool Scheduler::inActivation() const { return curTask_ < tasks_.size() && tasks_[curTask_]->state == State::Active; }
+
 Scheduler::Task& Scheduler::activeTask(const char* what) {
   if (curTask_ >= tasks_.size() || tasks_[curTask_]->state != State::Active)
     misuse((std::string(what) + " outside a task activation").c_str());

@@ -126,6 +126,8 @@ public:
   Scheduler(const Scheduler&) = delete;
   Scheduler& operator=(const Scheduler&) = delete;
 
+  // A task activation is executing (generated code or a native it called).
+  bool inActivation() const;
   // Configuration: before the first run().
   uint32_t addTask(TaskConfig);
   // Runs after the task's programs in each of its slots, also while its

@@ -141,7 +141,7 @@ llvm::Value* CodeGen::callPou(const CallExpr* e, Symbol* target, llvm::Value* se
     if (slot < 0) {
       call = b_.CreateCall(f, args);
     } else {
-      llvm::Value* vptr = b_.CreateAlignedLoad(ptrTy_, self, llvm::MaybeAlign(8));
+      llvm::Value* vptr = loadVptr(self, e);
       llvm::Value* fp = b_.CreateAlignedLoad(ptrTy_, b_.CreateConstInBoundsGEP1_64(ptrTy_, vptr, static_cast<uint64_t>(slot + 2)), llvm::MaybeAlign(8));
       call = b_.CreateCall(f->getFunctionType(), fp, args);
       if (fs_) indirectCallers_.insert(fs_->fn);
@@ -198,7 +198,7 @@ void CodeGen::callInstance(const CallExpr* e, Symbol* fbSym, llvm::Value* inst) 
   bool virt = fbSym->kind == Symbol::FunctionBlock && !viaSuper && !isValueInstance(e->callee);
   llvm::Value* chainDepth = isNative(fbSym) ? nullptr : pushCallSite(site(e, fbSym->name));
   if (virt) {
-    llvm::Value* vptr = b_.CreateAlignedLoad(ptrTy_, inst, llvm::MaybeAlign(8));
+    llvm::Value* vptr = loadVptr(inst, e);
     llvm::Value* fp = b_.CreateAlignedLoad(ptrTy_, b_.CreateConstInBoundsGEP1_64(ptrTy_, vptr, 1), llvm::MaybeAlign(8));
     b_.CreateCall(body->getFunctionType(), fp, {inst});
     if (fs_ && fs_->fn) indirectCallers_.insert(fs_->fn);
@@ -287,7 +287,7 @@ void CodeGen::emitPropertySet(const Expr* lhs, Symbol* prop, const Expr* rhs) {
   if (fnPtr) {
     b_.CreateCall(fty, fnPtr, {self, v});
   } else if (slot >= 0) {
-    llvm::Value* vptr = b_.CreateAlignedLoad(ptrTy_, self, llvm::MaybeAlign(8));
+    llvm::Value* vptr = loadVptr(self, lhs);
     llvm::Value* fp = b_.CreateAlignedLoad(ptrTy_, b_.CreateConstInBoundsGEP1_64(ptrTy_, vptr, static_cast<uint64_t>(slot + 2)), llvm::MaybeAlign(8));
     b_.CreateCall(fty, fp, {self, v});
     indirectCallers_.insert(fs_->fn);
@@ -778,6 +778,7 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
         return b_.CreateIntrinsic(llvm::Intrinsic::fptosi_sat, {i64_, d}, {b_.CreateUnaryIntrinsic(llvm::Intrinsic::round, res)});
       }
       if (up == "MEMCPY" || up == "MEMMOVE" || up == "MEMSET" || up == "MEMCMP") {
+        markSite(e, up);
         const Expr* n = input("N");
         llvm::Value* count = n ? emitValue(n, elementary(TypeKind::ULInt)) : b_.getInt64(0);
         // The byte functions return the number of bytes (CODESYS MemUtils).

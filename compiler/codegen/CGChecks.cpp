@@ -78,6 +78,12 @@ llvm::Value* CodeGen::checkedDivisor(llvm::Value* d, const ast::Node* at) {
   return b_.CreateSelect(nz, d, llvm::ConstantInt::get(d->getType(), 1));
 }
 
+void CodeGen::markSite(const ast::Node* at, const std::string& detail) {
+  if (!siteVar_) siteVar_ = new llvm::GlobalVariable(mod_, i32_, false, llvm::GlobalValue::ExternalLinkage, nullptr, "__stc_site");
+  // Volatile: the optimiser must neither drop nor move it past the access it marks.
+  b_.CreateStore(b_.getInt32(site(at, detail)), siteVar_, /*isVolatile=*/true);
+}
+
 Symbol* CodeGen::implicitCheck(const char* name) {
   if (!implicitChecksFound_) {
     implicitChecksFound_ = true;

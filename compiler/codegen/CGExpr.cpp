@@ -421,6 +421,7 @@ Address CodeGen::emitAddr(const Expr* e) {
       auto* d = cast<DerefExpr>(e);
       if (isa<SuperExpr>(d->base) || isa<ThisExpr>(d->base)) return Address{fs_->self, e->type};
       llvm::Value* p = emitValue(d->base, nullptr);
+      markSite(e);
       return Address{nullChecked(p, FaultKind::NullPointer, e), e->type};
     }
     case Expr::DirectAddress:

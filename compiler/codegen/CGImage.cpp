@@ -632,7 +632,58 @@ llvm::Constant* CodeGen::vtableFor(const Type* fb) {
   auto* init = llvm::ConstantStruct::getAnon(ctx_, fields);
   auto* g = new llvm::GlobalVariable(mod_, init->getType(), true, llvm::GlobalValue::InternalLinkage, init, "st." + fb->name + ".__vtable");
   vtables_[fb] = g;
+  vtableOrder_.push_back(g);
   return g;
+}
+
+llvm::Value* CodeGen::loadVptr(llvm::Value* self, const ast::Node* at) {
+  markSite(at);
+  llvm::Value* vptr = b_.CreateAlignedLoad(ptrTy_, self, llvm::MaybeAlign(8));
+  checkInVtables(vptr, at);
+  return vptr;
+}
+
+void CodeGen::checkInVtables(llvm::Value* p, const ast::Node* at) {
+  if (!opts_.checks) return;
+  if (!vtablesBegin_) {
+    vtablesBegin_ = new llvm::GlobalVariable(mod_, i8_, true, llvm::GlobalValue::ExternalLinkage, nullptr, "__stc_vtables.begin");
+    vtablesEnd_ = new llvm::GlobalVariable(mod_, i8_, true, llvm::GlobalValue::ExternalLinkage, nullptr, "__stc_vtables.end");
+  }
+  llvm::Value* ok = b_.CreateAnd(b_.CreateICmpUGE(p, vtablesBegin_), b_.CreateICmpULT(p, vtablesEnd_));
+  check(ok, FaultKind::BadVtable, site(at));
+}
+
+// Every vtable becomes one element of __stc_vtables, so "is this a vtable of the
+// program" is two comparisons (a MEMCPY over an instance cannot make a call jump
+// anywhere else).
+void CodeGen::finishVtables() {
+  if (vtableOrder_.empty()) {
+    if (vtablesBegin_) {
+      vtablesBegin_->replaceAllUsesWith(llvm::ConstantPointerNull::get(ptrTy_));
+      vtablesEnd_->replaceAllUsesWith(llvm::ConstantPointerNull::get(ptrTy_));
+      vtablesBegin_->eraseFromParent();
+      vtablesEnd_->eraseFromParent();
+    }
+    return;
+  }
+  std::vector<llvm::Constant*> inits;
+  for (llvm::GlobalVariable* g : vtableOrder_) inits.push_back(g->getInitializer());
+  auto* all = llvm::ConstantStruct::getAnon(ctx_, inits);
+  auto* big = new llvm::GlobalVariable(mod_, all->getType(), true, llvm::GlobalValue::InternalLinkage, all, "__stc_vtables");
+  big->setAlignment(llvm::Align(8));
+  for (size_t k = 0; k < vtableOrder_.size(); ++k) {
+    llvm::Constant* at = llvm::ConstantExpr::getInBoundsGetElementPtr(all->getType(), big, llvm::ArrayRef<llvm::Constant*>{b_.getInt32(0), b_.getInt32(static_cast<uint32_t>(k))});
+    vtableOrder_[k]->replaceAllUsesWith(at);
+    vtableOrder_[k]->eraseFromParent();
+  }
+  if (vtablesBegin_) {
+    vtablesBegin_->replaceAllUsesWith(big);
+    vtablesEnd_->replaceAllUsesWith(llvm::ConstantExpr::getInBoundsGetElementPtr(all->getType(), big, llvm::ArrayRef<llvm::Constant*>{b_.getInt32(1)}));
+    vtablesBegin_->eraseFromParent();
+    vtablesEnd_->eraseFromParent();
+  }
+  vtables_.clear();
+  vtableOrder_.clear();
 }
 
 }  // namespace stc::codegen

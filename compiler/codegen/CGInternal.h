@@ -176,6 +176,10 @@ public:
   // (an index, a value entering a subrange, a divisor) and its result used instead
   // (not inside the check functions themselves).  Null if the program has none.
   Symbol* implicitCheck(const char* name);
+  // Records `at` in __stc_site before an operation that may fault in hardware (a
+  // dereference, MEMCPY, an indirect call): vm/FaultSignals.cpp reports it there.
+  void markSite(const ast::Node* at, const std::string& detail = "");
+  llvm::GlobalVariable* siteVar_ = nullptr;
   llvm::Value* callImplicitCheck(Symbol* fn, std::vector<llvm::Value*> args, bool isSigned);
   std::map<std::string, Symbol*> implicitChecks_;
   bool implicitChecksFound_ = false;
@@ -278,6 +282,14 @@ public:
   std::map<const Symbol*, llvm::Function*> functions_;
   std::map<const Symbol*, std::vector<Symbol*>> params_;
   std::map<const Type*, llvm::GlobalVariable*> vtables_;
+  std::vector<llvm::GlobalVariable*> vtableOrder_;            // creation order: their place in __stc_vtables
+  // Dynamic dispatch reads an instance's vtable pointer; with checks it must point
+  // into __stc_vtables, the one array holding every vtable (finishVtables).
+  llvm::Value* loadVptr(llvm::Value* self, const ast::Node* at);
+  void checkInVtables(llvm::Value* p, const ast::Node* at);
+  void finishVtables();
+  llvm::GlobalVariable* vtablesBegin_ = nullptr;              // placeholders until finishVtables
+  llvm::GlobalVariable* vtablesEnd_ = nullptr;
   std::map<std::string, llvm::Constant*> stringLits_;
   std::vector<DynamicInit> imageDynamic_;
   std::map<llvm::Function*, std::set<llvm::Function*>> calls_;   // direct call graph (may-suspend analysis)

@@ -125,8 +125,12 @@ std::pair<llvm::Value*, llvm::Value*> CodeGen::interfaceSlot(const Expr* receive
   while (slot < keys.size() && keys[slot] != key) ++slot;
   size_t index = 1 + itf->pou->pou->interfaces.size() + slot;
   llvm::Value* vslot = b_.CreateAlignedLoad(i64_, b_.CreateConstInBoundsGEP1_64(ptrTy_, itable, index), llvm::MaybeAlign(8));
+  markSite(receiver);
   llvm::Value* vptr = b_.CreateAlignedLoad(ptrTy_, self, llvm::MaybeAlign(8));
-  llvm::Value* fp = b_.CreateAlignedLoad(ptrTy_, b_.CreateInBoundsGEP(ptrTy_, vptr, b_.CreateAdd(vslot, b_.getInt64(2))), llvm::MaybeAlign(8));
+  // The slot read (vtable pointer plus the itable's index) must lie in the program's vtables.
+  llvm::Value* slotPtr = b_.CreateGEP(ptrTy_, vptr, b_.CreateAdd(vslot, b_.getInt64(2)));
+  checkInVtables(slotPtr, receiver);
+  llvm::Value* fp = b_.CreateAlignedLoad(ptrTy_, slotPtr, llvm::MaybeAlign(8));
   if (fs_ && fs_->fn) indirectCallers_.insert(fs_->fn);
   return {self, fp};
 }

@@ -24,6 +24,7 @@ const char* faultCode(FaultKind k) {
     case FaultKind::UnboundInOut: return "fault-unbound-in-out";
     case FaultKind::ForStepZero: return "fault-for-step-zero";
     case FaultKind::StringIndex: return "fault-string-index";
+    case FaultKind::BadVtable: return "fault-bad-vtable";
   }
   return "fault";
 }
@@ -585,6 +586,7 @@ bool CodeGen::run(bool needTasks) {
   if (errors_) return false;
   std::string err;
   llvm::raw_string_ostream os(err);
+  finishVtables();
   finishDebugInfo();
   if (getenv("STC_DUMP_IR")) mod_.print(llvm::errs(), nullptr);
   if (llvm::verifyModule(mod_, &os)) {

@@ -38,7 +38,7 @@ struct Site {
 
 enum class FaultKind : uint32_t {
   DivisionByZero = 1, Index = 2, Subrange = 3, NullPointer = 4, NullReference = 5,
-  NullInterface = 6, UnboundInOut = 7, ForStepZero = 8, StringIndex = 9,
+  NullInterface = 6, UnboundInOut = 7, ForStepZero = 8, StringIndex = 9, BadVtable = 10,
 };
 const char* faultCode(FaultKind k);      // "fault-division-by-zero", ...
 
