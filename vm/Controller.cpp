@@ -91,6 +91,7 @@ bool Controller::load(std::unique_ptr<codegen::CompiledModule> module, std::stri
   // that did not fold are computed now.
   SessionScope scope(&sessionTable_);
   __stc_budget = INT64_MAX / 2;
+  setProgramMemory(image_, module_->image.size);
   if (module_->lowMemory) {
     Fiber low(size_t{1} << 20, true);   // the 32-bit address model: locals below 4 GiB
     low.start([this] { initDynamic_(); });
@@ -104,6 +105,7 @@ bool Controller::load(std::unique_ptr<codegen::CompiledModule> module, std::stri
 int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err) {
   // SIGSEGV & co. in a task become faults of that task (FB_INIT/FB_EXIT: of the run).
   installFaultSignals();
+  setProgramMemory(image_, module_->image.size);
   const sema::Layout& layout = *model_.layout;
   // Watches and traces are resolved before anything runs.
   std::vector<ValueRef> watches;

@@ -1,6 +1,9 @@
 #include "vm/Runtime.h"
 
+#include <pthread.h>
+
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -11,6 +14,7 @@
 
 #include "codegen/CodeGen.h"
 #include "basic/SourceManager.h"
+#include "vm/Fiber.h"
 #include "vm/Image.h"
 #include "vm/Scheduler.h"
 #include "vm/Time.h"
@@ -28,6 +32,37 @@ thread_local stc::vm::OutsideTaskFaultHandler tOutsideHandler = nullptr;
 }  // namespace
 
 uint32_t __stc_site = 0;
+
+namespace {
+thread_local uintptr_t tImageLo = 0, tImageHi = 0;
+
+// The running code's stack: the fiber's, else this thread's.
+std::pair<uintptr_t, uintptr_t> currentStack() {
+  if (const stc::vm::Fiber* f = stc::vm::Fiber::current()) {
+    auto [b, n] = f->stackRange();
+    return {reinterpret_cast<uintptr_t>(b), reinterpret_cast<uintptr_t>(b) + n};
+  }
+  thread_local std::pair<uintptr_t, uintptr_t> main = [] {
+    std::pair<uintptr_t, uintptr_t> r{0, 0};
+    pthread_attr_t a;
+    if (pthread_getattr_np(pthread_self(), &a) == 0) {
+      void* addr = nullptr;
+      size_t size = 0;
+      if (pthread_attr_getstack(&a, &addr, &size) == 0) r = {reinterpret_cast<uintptr_t>(addr), reinterpret_cast<uintptr_t>(addr) + size};
+      pthread_attr_destroy(&a);
+    }
+    return r;
+  }();
+  return main;
+}
+}  // namespace
+
+namespace stc::vm {
+void setProgramMemory(const void* image, uint64_t bytes) {
+  tImageLo = reinterpret_cast<uintptr_t>(image);
+  tImageHi = tImageLo + bytes;
+}
+}  // namespace stc::vm
 
 namespace stc::vm {
 [[noreturn]] void raiseFault(uint32_t site, const char* code, std::string message) {
@@ -85,6 +120,21 @@ float __powisf2(float, int);
     default: break;
   }
   raise(site, k, msg);
+}
+
+// MEMCPY & co. (always) and dereferences (--check-pointers): [p, p + n) must lie in
+// the program's image or in the running task's stack.
+void __stc_check_ptr(uint32_t site, const uint8_t* p, uint64_t n) {
+  auto a = reinterpret_cast<uintptr_t>(p);
+  if (!p) raise(site, FaultKind::NullPointer, "dereference of a NULL pointer");
+  auto inside = [&](uintptr_t lo, uintptr_t hi) { return a >= lo && a <= hi && n <= hi - a; };
+  if (inside(tImageLo, tImageHi)) return;
+  auto [slo, shi] = currentStack();
+  if (inside(slo, shi)) return;
+  char hex[32];
+  std::snprintf(hex, sizeof hex, "16#%llX", static_cast<unsigned long long>(a));
+  raise(site, FaultKind::PointerRange,
+        std::string("pointer ") + hex + " to " + std::to_string(n) + " bytes lies outside the program's memory (its image and the task's stack)");
 }
 
 [[noreturn]] void __stc_fault_index(uint32_t site, int64_t v, int64_t lo, int64_t hi) {
@@ -449,6 +499,7 @@ std::map<std::string, void*> runtimeSymbols() {
   m["__stc_budget"] = &__stc_budget;
   m["__stc_calls"] = &__stc_calls;
   m["__stc_site"] = &__stc_site;
+  STC_SYM(__stc_check_ptr);
 #undef STC_SYM
   // What LLVM lowers intrinsics and loops to.
   m["memcpy"] = reinterpret_cast<void*>(static_cast<void* (*)(void*, const void*, size_t)>(&std::memcpy));

@@ -22,6 +22,10 @@ OutsideTaskFaultHandler setOutsideTaskFaultHandler(OutsideTaskFaultHandler h);
 // Whether a handler is set (generated code runs outside the tasks).
 bool outsideTaskFaultHandlerSet();
 
+// The program's static memory, for __stc_check_ptr (set by the controller on the
+// thread that runs the program).
+void setProgramMemory(const void* image, uint64_t bytes);
+
 // Reports a fault of the running task (or to the outside handler) with its callers
 // from the task's call chain; does not return.
 [[noreturn]] void raiseFault(uint32_t site, const char* code, std::string message);

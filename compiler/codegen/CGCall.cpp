@@ -785,17 +785,27 @@ llvm::Value* CodeGen::emitBuiltin(const CallExpr* e) {
         llvm::Value* result = rt && rt->kind != TypeKind::Void && !isAggregate(rt) ? b_.CreateTrunc(count, valueType(rt)) : nullptr;
         if (up == "MEMSET") {
           llvm::Value* dst = emitValue(input("PDEST"), nullptr);
+          if (opts_.checks) checkPointerRange(dst, count, e);
           llvm::Value* v = b_.CreateTrunc(emitValue(input("VALUE"), elementary(TypeKind::ULInt)), i8_);
           b_.CreateMemSet(dst, v, count, llvm::MaybeAlign(1));
           return result;
         }
         if (up == "MEMCMP") {
-          llvm::Value* c = b_.CreateCall(runtime("memcmp", llvm::Type::getInt32Ty(ctx_), {ptrTy_, ptrTy_, i64_}),
-                                         {emitValue(input("P1"), nullptr), emitValue(input("P2"), nullptr), count});
+          llvm::Value* p1 = emitValue(input("P1"), nullptr);
+          llvm::Value* p2 = emitValue(input("P2"), nullptr);
+          if (opts_.checks) {
+            checkPointerRange(p1, count, e);
+            checkPointerRange(p2, count, e);
+          }
+          llvm::Value* c = b_.CreateCall(runtime("memcmp", llvm::Type::getInt32Ty(ctx_), {ptrTy_, ptrTy_, i64_}), {p1, p2, count});
           return b_.CreateIntCast(c, valueType(rt), true);
         }
         llvm::Value* dst = emitValue(input("PDEST"), nullptr);
         llvm::Value* src = emitValue(input("PSRC"), nullptr);
+        if (opts_.checks) {
+          checkPointerRange(dst, count, e);
+          checkPointerRange(src, count, e);
+        }
         if (up == "MEMCPY") b_.CreateMemCpy(dst, llvm::MaybeAlign(1), src, llvm::MaybeAlign(1), count);
         else b_.CreateMemMove(dst, llvm::MaybeAlign(1), src, llvm::MaybeAlign(1), count);
         return result;

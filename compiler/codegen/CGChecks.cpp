@@ -84,6 +84,11 @@ void CodeGen::markSite(const ast::Node* at, const std::string& detail) {
   b_.CreateStore(b_.getInt32(site(at, detail)), siteVar_, /*isVolatile=*/true);
 }
 
+void CodeGen::checkPointerRange(llvm::Value* p, llvm::Value* bytes, const ast::Node* at) {
+  b_.CreateCall(runtime("__stc_check_ptr", llvm::Type::getVoidTy(ctx_), {i32_, ptrTy_, i64_}),
+                {b_.getInt32(site(at)), p, b_.CreateZExtOrTrunc(bytes, i64_)});
+}
+
 Symbol* CodeGen::implicitCheck(const char* name) {
   if (!implicitChecksFound_) {
     implicitChecksFound_ = true;

@@ -422,6 +422,8 @@ Address CodeGen::emitAddr(const Expr* e) {
       if (isa<SuperExpr>(d->base) || isa<ThisExpr>(d->base)) return Address{fs_->self, e->type};
       llvm::Value* p = emitValue(d->base, nullptr);
       markSite(e);
+      if (opts_.checkPointers && e->type && !isOpenArray(e->type))
+        checkPointerRange(p, b_.getInt64(std::max<uint64_t>(sizeOf(e->type), 1)), e);
       return Address{nullChecked(p, FaultKind::NullPointer, e), e->type};
     }
     case Expr::DirectAddress:

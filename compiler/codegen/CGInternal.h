@@ -179,6 +179,8 @@ public:
   // Records `at` in __stc_site before an operation that may fault in hardware (a
   // dereference, MEMCPY, an indirect call): vm/FaultSignals.cpp reports it there.
   void markSite(const ast::Node* at, const std::string& detail = "");
+  // [p, p + bytes) must be the program's memory (image or task stack): __stc_check_ptr.
+  void checkPointerRange(llvm::Value* p, llvm::Value* bytes, const ast::Node* at);
   llvm::GlobalVariable* siteVar_ = nullptr;
   llvm::Value* callImplicitCheck(Symbol* fn, std::vector<llvm::Value*> args, bool isSigned);
   std::map<std::string, Symbol*> implicitChecks_;

@@ -25,6 +25,7 @@ const char* faultCode(FaultKind k) {
     case FaultKind::ForStepZero: return "fault-for-step-zero";
     case FaultKind::StringIndex: return "fault-string-index";
     case FaultKind::BadVtable: return "fault-bad-vtable";
+    case FaultKind::PointerRange: return "fault-pointer-range";
   }
   return "fault";
 }

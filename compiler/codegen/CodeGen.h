@@ -19,6 +19,9 @@ namespace stc::codegen {
 struct CodegenOptions {
   unsigned optLevel = 2;       // -O0..-O3
   bool checks = true;          // runtime checks (division by zero, bounds, null, subranges)
+  // --check-pointers: every dereference must land in the memory image or the running
+  // task's stack (default in stc test); MEMCPY/MEMSET/MEMMOVE/MEMCMP are always checked.
+  bool checkPointers = false;
   bool debugInfo = false;      // -g
   // Programs to run when there is no CONFIGURATION (stc run --program); empty: automatic.
   std::vector<std::string> programs;
@@ -38,7 +41,7 @@ struct Site {
 
 enum class FaultKind : uint32_t {
   DivisionByZero = 1, Index = 2, Subrange = 3, NullPointer = 4, NullReference = 5,
-  NullInterface = 6, UnboundInOut = 7, ForStepZero = 8, StringIndex = 9, BadVtable = 10,
+  NullInterface = 6, UnboundInOut = 7, ForStepZero = 8, StringIndex = 9, BadVtable = 10, PointerRange = 11,
 };
 const char* faultCode(FaultKind k);      // "fault-division-by-zero", ...
 

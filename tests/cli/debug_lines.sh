@@ -13,5 +13,6 @@ for line in 13 14 15; do
   grep -Eq "^0x[0-9a-f]+ +$line +[0-9]+ " <<< "$dump" || { echo "line $line missing"; exit 1; }
 done
 "$stc" build -O0 "$src" -o "$tmp/nodebug.o"
-if llvm-dwarfdump-19 --debug-line "$tmp/nodebug.o" | grep -q "name: \"$(basename "$src")\""; then echo "line table without -g"; exit 1; fi
+nodebug=$(llvm-dwarfdump-19 --debug-line "$tmp/nodebug.o")
+if grep -q "name: \"$(basename "$src")\"" <<< "$nodebug"; then echo "line table without -g"; exit 1; fi
 echo ok

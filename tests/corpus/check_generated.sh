@@ -9,4 +9,4 @@ rm -rf "$out"
 python3 -B "$gen" "$out" "$@" > /dev/null
 log=$("$stc" check --stats "$out" 2>&1) || { echo "$log" | tail -40; exit 1; }
 echo "$log" | tail -3
-if echo "$log" | grep -q "warning:"; then echo "unexpected warnings"; exit 1; fi
+if grep -q "warning:" <<< "$log"; then echo "unexpected warnings"; exit 1; fi

@@ -447,6 +447,7 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
   codegen::CodegenOptions o;
   o.optLevel = 1;   // as stc run
   o.checks = true;
+  o.checkPointers = true;   // scenarios run with every pointer checked (docs/security.md)
   std::unique_ptr<codegen::CompiledModule> m;
   size_t before = comp.diags().diagnostics().size();
   runWithLargeStack([&] { m = codegen::generate(*comp.model(), comp.sources(), comp.diags(), o, true); });

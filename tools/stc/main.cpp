@@ -157,6 +157,7 @@ struct BuildArgs : CheckArgs {
   std::string emit = "obj";
   std::string opt;
   bool noChecks = false;
+  bool checkPointers = false;
   bool debug = false;
   std::vector<std::string> programs;
   std::string interval;
@@ -201,6 +202,7 @@ std::unique_ptr<codegen::CompiledModule> compile(Compilation& c, const BuildArgs
   codegen::CodegenOptions o;
   o.optLevel = a.opt.empty() ? (needTasks ? 1 : 2) : static_cast<unsigned>(a.opt[0] - '0');
   o.checks = !a.noChecks;
+  o.checkPointers = a.checkPointers && !a.noChecks;
   o.debugInfo = a.debug;
   o.programs = a.programs;
   if (!a.interval.empty()) {
@@ -371,6 +373,7 @@ void addCompileOptions(CLI::App* cmd, BuildArgs& a) {
   cmd->add_option("--lib", a.libs, "Compile in an optional library (e.g. codesys_sm3)")->check(CLI::IsMember(availableLibraries()))->allow_extra_args(false);
   cmd->add_option("-O", a.opt, "Optimisation level 0-3 (-O0 .. -O3)")->check(CLI::IsMember({"0", "1", "2", "3"}));
   cmd->add_flag("--no-checks", a.noChecks, "Drop the runtime checks (division by zero, bounds, NULL, subranges)");
+  cmd->add_flag("--check-pointers", a.checkPointers, "Fault on dereferences outside the program's image and the task's stack");
   cmd->add_flag("-g", a.debug, "Emit debug information");
   cmd->add_option("--color", a.color, "Colour diagnostics")->check(CLI::IsMember({"auto", "always", "never"}));
   cmd->add_flag("-w,--no-warnings", a.noWarnings, "Suppress all warnings");
