@@ -102,6 +102,19 @@ bool Controller::load(std::unique_ptr<codegen::CompiledModule> module, std::stri
 
 int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err) {
   const sema::Layout& layout = *model_.layout;
+  bool warm = false;
+  if (!opts.retainFile.empty()) {
+    // Before anything runs: a file that is not ours is never replaced, and a save that
+    // cannot succeed is found now rather than after the run.
+    const RetainStart rs = restoreRetain(opts.retainFile, opts.cold, opts.retainReset, err);
+    if (rs == RetainStart::Refused) return 2;
+    std::string e;
+    if (!retainWritable(opts.retainFile, e)) {
+      err << "stc: error: retain file '" << opts.retainFile << "' cannot be saved: " << e << "; nothing ran\n";
+      return 2;
+    }
+    warm = rs == RetainStart::Warm;
+  }
   // Watches and traces are resolved before anything runs.
   std::vector<ValueRef> watches;
   for (const std::string& w : opts.watches) {
@@ -141,19 +154,6 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
       err << "stc: error: " << e << "\n";
       return 2;
     }
-  }
-  bool warm = false;
-  if (!opts.retainFile.empty()) {
-    // Before anything runs: a file that is not ours is never replaced, and a save that
-    // cannot succeed is found now rather than after the run.
-    const RetainStart rs = restoreRetain(opts.retainFile, opts.cold, opts.retainReset, err);
-    if (rs == RetainStart::Refused) return 2;
-    std::string e;
-    if (!retainWritable(opts.retainFile, e)) {
-      err << "stc: error: retain file '" << opts.retainFile << "' cannot be saved: " << e << "; nothing ran\n";
-      return 2;
-    }
-    warm = rs == RetainStart::Warm;
   }
   // FB_INIT of every instance, after the retained values are back.  A fault
   // there stops the run before the first cycle.
