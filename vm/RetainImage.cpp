@@ -3,6 +3,7 @@
 // changed is converted where no value is lost; every restored value is checked
 // against its subrange, enumeration and string capacity; what is dropped,
 // converted or not restored is listed as notes.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -282,9 +283,10 @@ void Controller::checkRestored(const RetainLeaf& l, std::vector<std::string>& no
       const uint64_t uv = isSigned ? 0 : readUnsigned(p, bytes);
       const std::string text = isSigned ? std::to_string(sv) : std::to_string(uv);
       if (scalar->kind == sema::TypeKind::Subrange) {
+        // (the bounds of an unsigned subrange are not negative)
         const bool in = isSigned ? sv >= scalar->lo && sv <= scalar->hi
-                                 : scalar->lo <= 0 ? uv <= static_cast<uint64_t>(scalar->hi) || scalar->hi < 0
-                                                   : uv >= static_cast<uint64_t>(scalar->lo) && uv <= static_cast<uint64_t>(scalar->hi);
+                                 : uv >= static_cast<uint64_t>(std::max<int64_t>(scalar->lo, 0)) && scalar->hi >= 0 &&
+                                       uv <= static_cast<uint64_t>(scalar->hi);
         if (!in) problem = text + " is outside " + scalar->name;
       } else {
         bool known = false;
