@@ -185,6 +185,18 @@ bool saveRetainFile(const std::string& file, const std::vector<RetainEntry>& ent
     }
     ::unlink(tmp.c_str());
   }
+  // Only a retain file is ever replaced, also when something else took its place during
+  // the run (the check at start is not enough on its own).
+  if (::lstat(target.c_str(), &st) == 0) {
+    if (!S_ISREG(st.st_mode)) return error = "'" + target + "' is not a regular file; it is not replaced", false;
+    int fd = ::open(target.c_str(), O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
+    char head[6] = {};
+    const ssize_t n = fd < 0 ? -1 : ::read(fd, head, sizeof head);
+    if (fd >= 0) ::close(fd);
+    if (n < 0 && st.st_size > 0) return error = sysError("read", target) + "; it is not replaced", false;
+    if (n > 0 && std::memcmp(head, kMagic, static_cast<size_t>(n)) != 0)
+      return error = "'" + target + "' is no longer a retain file (it was replaced during the run); it is not overwritten", false;
+  }
   mode_t mode = 0644;
   const bool replacing = ::stat(target.c_str(), &st) == 0;
   if (replacing) mode = st.st_mode & 07777;

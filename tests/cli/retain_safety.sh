@@ -178,6 +178,22 @@ run 4 b.st --cycles 1 --retain blocked.dat --watch fb.n
 [ "$out" = "fb.n = 1" ] || fail "exit 4 still prints the watches: $out"
 has "cannot save retain file: 'blocked.dat.tmp' is in the way"
 [ "$(cat blocked.dat.tmp)" = "not ours" ] || fail "a foreign .tmp was overwritten"
+# A file put in the retain file's place during the run is not overwritten by the last save.
+cat > slow.st <<'ST'
+VAR_GLOBAL RETAIN n : DINT; END_VAR
+PROGRAM MAIN
+n := n + 1;
+END_PROGRAM
+ST
+"$stc" run slow.st --for 1h --realtime --retain swapped.dat >/dev/null 2>"$tmp/swap.err" &
+pid=$!
+sleep 1
+echo "user data" > swapped.dat
+kill -TERM "$pid"
+set +e; wait "$pid"; rc=$?; set -e
+[ "$rc" -eq 4 ] || fail "a swapped-in file: exit $rc, expected 4: $(cat "$tmp/swap.err")"
+grep -qF "is no longer a retain file" "$tmp/swap.err" || fail "no message for a swapped-in file: $(cat "$tmp/swap.err")"
+[ "$(cat swapped.dat)" = "user data" ] || fail "a file swapped in during the run was overwritten"
 if [ "$(id -u)" != 0 ]; then
   mkdir ro; run 0 b.st --cycles 1 --retain ro/r.dat
   chmod 500 ro
