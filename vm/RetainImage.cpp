@@ -86,12 +86,18 @@ bool oldArray(const std::string& sig, std::vector<sema::Dim>& dims, std::string&
       sema::Dim dim;
       dim.lo = std::stoll(one.substr(0, dots));
       dim.hi = std::stoll(one.substr(dots + 2));
+      if (dim.hi < dim.lo || dim.hi - dim.lo >= (int64_t(1) << 32)) return false;   // (a forged file)
       dims.push_back(dim);
     } catch (...) {
       return false;
     }
     if (comma == std::string::npos) break;
     pos = comma + 1;
+  }
+  uint64_t n = 1;
+  for (const sema::Dim& dim : dims) {
+    n *= static_cast<uint64_t>(dim.hi - dim.lo + 1);
+    if (n > (uint64_t(1) << 32)) return false;
   }
   return !dims.empty();
 }
