@@ -140,7 +140,7 @@ bool convertScalar(const OldScalar& o, const uint8_t* src, const sema::Type* t, 
     const uint32_t unit = o.cls == Cls::WString ? 2 : 1;
     uint32_t len = 0;
     while (len <= o.capacity && !(src[len * unit] == 0 && (unit == 1 || src[len * unit + 1] == 0))) ++len;
-    if (len > u->length) return false;   // longer than the new capacity (or no terminator)
+    if (len > o.capacity || len > u->length) return false;   // no terminator (damaged), or longer than the new capacity
     std::memset(dst, 0, newSize);
     std::memcpy(dst, src, len * unit);
     return true;

@@ -98,6 +98,7 @@ TYPE E_Mode : (Idle, Run, Stop); END_TYPE
 VAR_GLOBAL RETAIN
   s : STRING(80) := 'init';
   w : WSTRING(4) := "ab";
+  w2 : WSTRING(10);
   ok : BOOL := TRUE;
   modes : ARRAY[0..2] OF E_Mode;
   x : DINT;
@@ -107,11 +108,13 @@ x := x + 1;
 END_PROGRAM
 ST
 mk long.dat 2 "s|STRING(80) RETAIN|$(printf '61%.0s' $(seq 81))" "w|WSTRING(4) RETAIN|41004200430044004500" \
+   "w2|WSTRING(4) RETAIN|41004200430044004500" \
    "ok|BOOL RETAIN|07" "modes|ARRAY[0..2] OF INT RETAIN|010009000200" "x|DINT RETAIN|05000000"
-run 0 s.st --cycles 1 --retain long.dat --watch s --watch w --watch ok --watch modes --watch x
-[ "$out" = $'s = \'init\'\nw = "ab"\nok = TRUE\nmodes = [E_Mode#Run, E_Mode#Idle, E_Mode#Stop]\nx = 6' ] || fail "value checks: $out"
+run 0 s.st --cycles 1 --retain long.dat --watch s --watch w --watch w2 --watch ok --watch modes --watch x
+[ "$out" = $'s = \'init\'\nw = "ab"\nw2 = ""\nok = TRUE\nmodes = [E_Mode#Run, E_Mode#Idle, E_Mode#Stop]\nx = 6' ] || fail "value checks: $out"
 has "retained 's' was not restored: its length exceeds the capacity of STRING(80); it keeps its initial value"
 has "retained 'w' was not restored: its length exceeds the capacity of WSTRING(4)"
+has "retained 'w2' changed type from WSTRING(4) to WSTRING(10) and cannot be converted"   # (a damaged old value)
 has "retained 'ok' was not restored: the byte 7 is not a BOOL"
 has "retained 'modes[1]' was not restored: 9 is not a value of E_Mode"
 
