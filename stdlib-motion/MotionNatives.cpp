@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 #include <toml++/toml.h>
 
@@ -22,8 +23,7 @@ const void* MotionLibrary::sessionKey() const { return &kMotionSessionKey; }
 std::unique_ptr<vm::NativeSession> MotionLibrary::newSession() const { return std::make_unique<MotionSession>(*this, cfg_); }
 
 bool MotionLibrary::readProject(const std::string& dir, const std::vector<std::string>& libraries, std::string& error) {
-  cfg_.filesDir = dir;
-  return loadProjectAxes(dir, cfg_.axes, error) && loadProjectIo(dir, cfg_.io, error) && loadProjectCams(dir, cfg_.cams, error) &&
+  return loadProjectDataDir(dir, cfg_.filesDir, error) && loadProjectAxes(dir, cfg_.axes, error) && loadProjectIo(dir, cfg_.io, error) && loadProjectCams(dir, cfg_.cams, error) &&
          loadProjectVendorProfile(dir, libraries, cfg_.profile, error);
 }
 
@@ -149,6 +149,20 @@ bool faultKindNamed(std::string_view name, FaultKind& out) {
 
 const char* faultKindNames() {
   return "drive_error, communication_lost, communication_restored, limit_positive, limit_negative or limits_released";
+}
+
+bool loadProjectDataDir(const std::string& dir, std::string& out, std::string& error) {
+  std::string file;
+  toml::table tbl;
+  projectTables(dir, "project", tbl, file);
+  out = (std::filesystem::path(dir) / "data").string();
+  if (const toml::node* n = tbl["project"]["data_dir"].node()) {
+    auto d = n->value<std::string>();
+    if (!d || d->empty()) return error = where(file, *n) + "[project] data_dir must be a directory name (e.g. \"data\")", false;
+    // Relative to the project directory; an absolute directory is the project author's choice.
+    out = std::filesystem::path(*d).is_absolute() ? *d : (std::filesystem::path(dir) / *d).string();
+  }
+  return true;
 }
 
 bool loadProjectVendorProfile(const std::string& dir, const std::vector<std::string>& libraries, VendorProfile& out,

@@ -42,8 +42,10 @@ struct MotionConfig {
   std::vector<IoDevice> io;        // [[io]]
   std::vector<CamConfig> cams;     // [[cam]]
   VendorProfile profile;           // [project] motion_profile, else by the libraries used
-  // Where SMC_ReadCAM / SMC_WriteCAM files live (they never leave it): the project
-  // directory, or for loose files the directory of the first one.
+  // The data directory: where the files a program opens live (SMC_ReadCAM, SMC_WriteCAM,
+  // SMC_AxisDiagnosticLog.WriteToFile; they never leave it, vm/FileSandbox.h).  A project's
+  // [project] data_dir (default <project>/data), `stc run --data-dir`, or for loose files
+  // the directory of the first one.
   std::string filesDir;
 };
 
@@ -177,18 +179,13 @@ bool loadProjectVendorProfile(const std::string& dir, const std::vector<std::str
                               std::string& error);
 VendorProfile defaultVendorProfile(const std::vector<std::string>& libraries);
 
+// [project] data_dir of dir/project.toml (relative to dir; default dir/data).
+bool loadProjectDataDir(const std::string& dir, std::string& out, std::string& error);
 bool loadProjectIo(const std::string& dir, std::vector<IoDevice>& out, std::string& error);
 // The [[cam]] tables of dir/project.toml (ProjectCams.cpp).
 bool loadProjectCams(const std::string& dir, std::vector<CamConfig>& out, std::string& error);
-// A file name given by a program, resolved inside `dir`; false (with `why`) for an absolute
-// path, a path that leaves the directory (also through a symbolic link) or an empty name.
-// Also false for anything but a regular file (or a name not yet taken): a FIFO, a
-// directory or a device never blocks or feeds the controller.
-bool resolveProjectFile(const std::string& dir, const std::string& name, std::string& path, std::string& why);
-// Reads a resolved project file of at most kMaxProjectFileBytes.
+// The largest file a program or project.toml may have read (cam files).
 inline constexpr uint64_t kMaxProjectFileBytes = 64ull * 1024 * 1024;
-enum class ProjectFileRead : uint8_t { Ok, CannotOpen, TooBig };
-ProjectFileRead readProjectFile(const std::string& path, std::string& text);
 // ProjectIo.cpp: binds the devices at start; evaluates them after each task slot.
 std::shared_ptr<IoRuntime> startIo(const vm::StartCtx& sc, const std::vector<IoDevice>& devices, Kernel& k, std::string& error);
 void cycleIo(IoRuntime& io, int64_t nowNs);

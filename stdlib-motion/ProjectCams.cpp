@@ -7,6 +7,7 @@
 
 #include "stdlib-motion/MotionNatives.h"
 #include "stdlib-motion/ProjectToml.h"
+#include "vm/FileSandbox.h"
 
 namespace stc::motion {
 
@@ -62,13 +63,14 @@ bool readCam(const toml::table& t, const std::string& dir, const std::string& he
     return false;
   }
   if (auto file = t["file"].value<std::string>()) {
-    std::string path;
-    if (!resolveProjectFile(dir, *file, path, why)) return error = here + "cam file '" + *file + "': " + why, false;
+    // Project files: relative to the project directory, never leaving it (vm/FileSandbox.h).
+    const int fd = vm::openInside(dir, *file, vm::FileAccess::Read, why);
+    if (fd < 0) return error = here + "cam file '" + *file + "': " + why, false;
     std::string text;
-    switch (readProjectFile(path, text)) {
-    case ProjectFileRead::Ok: break;
-    case ProjectFileRead::CannotOpen: return error = here + "cannot open cam file '" + *file + "'", false;
-    case ProjectFileRead::TooBig: return error = here + "cam file '" + *file + "' is larger than 64 MB", false;
+    switch (vm::readAndClose(fd, kMaxProjectFileBytes, text)) {
+    case vm::ReadResult::Ok: break;
+    case vm::ReadResult::Failed: return error = here + "cannot read cam file '" + *file + "'", false;
+    case vm::ReadResult::TooBig: return error = here + "cam file '" + *file + "' is larger than 64 MB", false;
     }
     std::string name, detail;
     if (readCamText(text, cam, name, detail) != CamFileError::None) return error = here + *file + ": " + detail, false;
@@ -132,40 +134,6 @@ bool readCam(const toml::table& t, const std::string& dir, const std::string& he
 }
 
 }  // namespace
-
-bool resolveProjectFile(const std::string& dir, const std::string& name, std::string& path, std::string& why) {
-  namespace fs = std::filesystem;
-  if (name.empty()) return why = "no file name", false;
-  const fs::path rel(name);
-  if (rel.is_absolute() || rel.has_root_name()) return why = "an absolute path (file names are relative to the project directory)", false;
-  std::error_code ec;
-  const fs::path root = fs::weakly_canonical(fs::absolute(dir.empty() ? "." : dir, ec), ec);
-  const fs::path full = fs::weakly_canonical(root / rel, ec);
-  if (ec) return why = "not a valid file name", false;
-  // Inside the root: the root's components are a prefix of the resolved path (symbolic links resolved).
-  auto r = root.begin(), f = full.begin();
-  for (; r != root.end(); ++r, ++f)
-    if (f == full.end() || *r != *f) return why = "outside the project directory", false;
-  if (f == full.end()) return why = "not a file", false;
-  const fs::file_status st = fs::status(full, ec);
-  if (fs::exists(st) && !fs::is_regular_file(st)) return why = "not a regular file", false;
-  path = full.string();
-  return true;
-}
-
-ProjectFileRead readProjectFile(const std::string& path, std::string& text) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return ProjectFileRead::CannotOpen;   // (it may have changed since)
-  const uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) return ProjectFileRead::CannotOpen;
-  if (size > kMaxProjectFileBytes) return ProjectFileRead::TooBig;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return ProjectFileRead::CannotOpen;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  text = ss.str();
-  return ProjectFileRead::Ok;
-}
 
 bool loadProjectCams(const std::string& dir, std::vector<CamConfig>& out, std::string& error) {
   std::string file;

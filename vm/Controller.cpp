@@ -107,6 +107,19 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   installFaultSignals();
   setProgramMemory(image_, module_->image.size);
   const sema::Layout& layout = *model_.layout;
+  bool warm = false;
+  if (!opts.retainFile.empty()) {
+    // Before anything runs: a file that is not ours is never replaced, and a save that
+    // cannot succeed is found now rather than after the run.
+    const RetainStart rs = restoreRetain(opts.retainFile, opts.cold, opts.retainReset, err);
+    if (rs == RetainStart::Refused) return 2;
+    std::string e;
+    if (!retainWritable(opts.retainFile, e)) {
+      err << "stc: error: retain file '" << opts.retainFile << "' cannot be saved: " << e << "; nothing ran\n";
+      return 2;
+    }
+    warm = rs == RetainStart::Warm;
+  }
   // Watches and traces are resolved before anything runs.
   std::vector<ValueRef> watches;
   for (const std::string& w : opts.watches) {
@@ -147,7 +160,6 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
       return 2;
     }
   }
-  bool warm = !opts.retainFile.empty() && restoreRetain(opts.retainFile, opts.cold, err);
   // FB_INIT of every instance, after the retained values are back.  A fault
   // there stops the run before the first cycle.
   FaultInfo initFault;
@@ -263,18 +275,25 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
     };
     sched_->setTickCallback(tickFn_);
   }
-  std::string retainError;
+  bool retainFailed = false;
+  auto retainSave = [this, &err, &retainFailed](const std::string& file) {
+    std::string e;
+    if (saveRetain(file, e)) return;
+    // Reported once per run (a periodic save that keeps failing says so once); the run goes on
+    // and ends with exit status 4.
+    if (!retainFailed) err << "stc: error: cannot save retain file: " << e << "\n";
+    retainFailed = true;
+  };
   if (!opts.retainFile.empty() && opts.retainEvery && *opts.retainEvery > 0) {
     // Periodic saves at tick boundaries: a killed process loses at most one period.
     Time every = *opts.retainEvery;
     auto next = std::make_shared<Time>(every);
     sched_->addTickPeriod(every);
     const std::string file = opts.retainFile;
-    sched_->setTickCallback([this, next, every, file, tick = std::move(tickFn_)](Time now) {
+    sched_->setTickCallback([this, next, every, file, retainSave, tick = std::move(tickFn_)](Time now) {
       if (tick) tick(now);
       if (now + sched_->baseTick() >= *next) {
-        std::string e;
-        saveRetain(file, e);
+        retainSave(file);
         *next += every;
       }
     });
@@ -296,8 +315,7 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   gStopTarget = nullptr;
   FaultInfo exitFault;
   bool exitFaulted = !callOutsideTasks(fbExit_, false, exitFault);
-  if (!opts.retainFile.empty() && !saveRetain(opts.retainFile, retainError))
-    err << "stc: error: cannot save retain file: " << retainError << "\n";
+  if (!opts.retainFile.empty()) retainSave(opts.retainFile);
   if (trace) {
     std::string e;
     if (!trace->finish(e)) err << "stc: error: " << e << "\n";
@@ -318,7 +336,8 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   }
   reportFaults(err);
   if (exitFaulted) reportFault(exitFault, "runtime fault in FB_EXIT, after the last cycle: ");
-  return sched_->faults().empty() && !exitFaulted ? 0 : 3;
+  if (!sched_->faults().empty() || exitFaulted) return 3;
+  return retainFailed ? 4 : 0;
 }
 
 std::string Controller::valueText(const ValueRef& r) const {
@@ -347,47 +366,6 @@ std::vector<Controller::RetainRegion> Controller::retainRegions() const {
     else walk(r.path, r.offset, r.type, 0);
   }
   return out;
-}
-
-bool Controller::saveRetain(const std::string& file, std::string& error) {
-  std::vector<RetainEntry> entries;
-  for (const RetainRegion& r : retainRegions()) {
-    RetainEntry e;
-    e.path = r.path;
-    e.signature = model_.layout->signature(r.type) + (r.persistent ? " PERSISTENT" : " RETAIN");
-    uint64_t n = model_.layout->sizeOf(r.type);
-    e.bytes.assign(image_ + r.offset, image_ + r.offset + n);
-    entries.push_back(std::move(e));
-  }
-  return saveRetainFile(file, entries, error);
-}
-
-bool Controller::restoreRetain(const std::string& file, bool coldStart, std::ostream& err) {
-  std::vector<RetainEntry> entries;
-  std::string error;
-  RetainLoad r = loadRetainFile(file, entries, error);
-  if (r == RetainLoad::Missing) return false;
-  if (r == RetainLoad::Corrupt) {
-    err << "stc: warning: retain file '" << file << "' is damaged (" << error << "); cold start\n";
-    return false;
-  }
-  bool restored = false;
-  std::map<std::string, const RetainEntry*> byPath;
-  for (const RetainEntry& e : entries) byPath[e.path] = &e;
-  for (const RetainRegion& reg : retainRegions()) {
-    if (coldStart && !reg.persistent) continue;
-    auto it = byPath.find(reg.path);
-    if (it == byPath.end()) continue;
-    std::string sig = model_.layout->signature(reg.type) + (reg.persistent ? " PERSISTENT" : " RETAIN");
-    uint64_t n = model_.layout->sizeOf(reg.type);
-    if (it->second->signature != sig || it->second->bytes.size() != n) {
-      err << "stc: note: retained '" << reg.path << "' changed type; it starts from its initial value\n";
-      continue;
-    }
-    std::memcpy(image_ + reg.offset, it->second->bytes.data(), n);
-    restored = true;
-  }
-  return restored;
 }
 
 namespace {

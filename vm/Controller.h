@@ -28,6 +28,7 @@ class Scheduler;
 struct FaultInfo;
 class TraceWriter;
 struct ValueRef;
+struct RetainEntry;
 
 struct RunOptions {
   std::optional<uint64_t> cycles;        // slots of the fastest cyclic task
@@ -42,6 +43,7 @@ struct RunOptions {
   std::string retainFile;                // RETAIN/PERSISTENT variables: restored at start, saved at stop
   std::optional<Time> retainEvery;       // also save every D of simulated time
   bool cold = false;                     // restore PERSISTENT variables only
+  bool retainReset = false;              // start from the initial values; replace a damaged/newer file
   // Scenarios (stc test, tools/stc/TestCommand.cpp): called before every task
   // slot (before the inputs are copied in) and after every base tick (after
   // the trace sample), with the tick's time.
@@ -62,7 +64,8 @@ public:
   // JIT-compiles the module and performs a cold start.  False with `error`.
   bool load(std::unique_ptr<codegen::CompiledModule> module, std::string& error);
   // Runs; prints the watches to `out`.  Returns the exit status:
-  // 0 ok, 2 a bad watch/trace request, 3 a runtime fault happened.
+  // 0 ok, 2 a bad watch/trace request or a retain file that cannot be used,
+  // 3 a runtime fault happened, 4 the retain file could not be saved (and no fault).
   int run(const RunOptions& opts, std::ostream& out, std::ostream& err);
 
   uint8_t* image() const { return image_; }
@@ -76,9 +79,16 @@ public:
   // The retained regions of the image (RETAIN/PERSISTENT at any depth).
   struct RetainRegion { std::string path; uint64_t offset; const sema::Type* type; bool persistent; };
   std::vector<RetainRegion> retainRegions() const;
+  // The retained values one by one (vm/RetainImage.cpp): elementary values, strings,
+  // arrays of them and unions; structures, FB instances and arrays of them are split
+  // into their members; pointers, references, interfaces and vtables are not kept.
+  struct RetainLeaf { std::string path; uint64_t offset; const sema::Type* type; int bit; bool persistent; };
+  std::vector<RetainLeaf> retainLeaves() const;
   bool saveRetain(const std::string& file, std::string& error);
-  // Returns whether values were restored (a warm start).
-  bool restoreRetain(const std::string& file, bool coldStart, std::ostream& err);
+  // Warm: values were restored; Cold: none (no file, --retain-reset); Refused: the file
+  // is not one to use or replace (the message is printed; the run must not start).
+  enum class RetainStart { Cold, Warm, Refused };
+  RetainStart restoreRetain(const std::string& file, bool coldStart, bool reset, std::ostream& err);
 
   std::string valueText(const ValueRef& r) const;
 
@@ -87,6 +97,10 @@ private:
   void reportFaults(std::ostream& err);
   void reportFault(const FaultInfo& info, const std::string& prefix);
   bool callOutsideTasks(void (*fn)(bool), bool arg, FaultInfo& fault);
+  std::string leafSignature(const RetainLeaf& l) const;
+  std::vector<uint8_t> leafBytes(const RetainLeaf& l) const;
+  void checkRestored(const RetainLeaf& l, std::vector<std::string>& notes);
+  bool convertLeaf(const RetainLeaf& l, const RetainEntry& e, std::string& how);
   const sema::Model& model_;
   DiagnosticsEngine& diags_;
   std::unique_ptr<codegen::CompiledModule> module_;

@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
+#include <cstdio>
+#include <unistd.h>
 
 #include "stdlib-motion/codesys_sm3/Sm3Face.h"
 #include "stdlib-motion/core/Coupling.h"
 #include "stdlib-motion/core/InputBounds.h"
+#include "vm/FileSandbox.h"
 
 using namespace stc::motion;
 using namespace stc::motion::sm3face;
@@ -417,10 +419,11 @@ void SMC_GetCamSlaveSetPosition(sm3::SMC_GetCamSlaveSetPosition* self) {
   fb.sync();
 }
 
-// The file of a program's name, inside the project's files directory.
-bool camFile(const char* name, std::string& path) {
+// Opens the file a program names, inside the data directory (vm/FileSandbox.h); -1 when
+// the name is refused or the file cannot be opened.
+int camFile(const char* name, stc::vm::FileAccess access) {
   std::string why;
-  return resolveProjectFile(MotionSession::current().filesDir(), std::string(name, strnlen(name, 255)), path, why);
+  return stc::vm::openInside(MotionSession::current().filesDir(), std::string(name, strnlen(name, 255)), access, why);
 }
 
 void SMC_ReadCAM(sm3::SMC_ReadCAM* self) {
@@ -428,13 +431,13 @@ void SMC_ReadCAM(sm3::SMC_ReadCAM* self) {
   Kernel& k = kernel();
   FbSlot& fb = slotOf(self, FbKind::Other);
   if (!k.beginExecute(fb, self->bExecute, c)) return fb.sync();
-  std::string path;
-  if (!camFile(self->sFileName, path)) return k.fail(fb, Error::RcamFileDoesntExist, c);
+  const int fd = camFile(self->sFileName, stc::vm::FileAccess::Read);
+  if (fd < 0) return k.fail(fb, Error::RcamFileDoesntExist, c);
   std::string text;
-  switch (readProjectFile(path, text)) {
-  case ProjectFileRead::Ok: break;
-  case ProjectFileRead::CannotOpen: return k.fail(fb, Error::RcamFileDoesntExist, c);
-  case ProjectFileRead::TooBig: return k.fail(fb, Error::RcamTooMuchData, c);
+  switch (stc::vm::readAndClose(fd, kMaxProjectFileBytes, text)) {
+  case stc::vm::ReadResult::Ok: break;
+  case stc::vm::ReadResult::Failed: return k.fail(fb, Error::RcamFileDoesntExist, c);
+  case stc::vm::ReadResult::TooBig: return k.fail(fb, Error::RcamTooMuchData, c);
   }
   Cam cam;
   std::string name, detail;
@@ -459,12 +462,17 @@ void SMC_ReadCAM(sm3::SMC_ReadCAM* self) {
 
 void SMC_WriteCAM(sm3::SMC_WriteCAM* self) {
   xyvaAtEdge(self, [&](const Cam& cam) {
-    std::string path;
-    if (!camFile(self->sFileName, path)) return Error::RcamFileDoesntExist;
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out << writeCamText(cam, std::string(self->CAM->strCAMName, strnlen(self->CAM->strCAMName, sizeof self->CAM->strCAMName)));
-    out.close();
-    return out ? Error::None : Error::RcamFileDoesntExist;
+    const int fd = camFile(self->sFileName, stc::vm::FileAccess::Write);
+    if (fd < 0) return Error::RcamFileDoesntExist;
+    const std::string text =
+        writeCamText(cam, std::string(self->CAM->strCAMName, strnlen(self->CAM->strCAMName, sizeof self->CAM->strCAMName)));
+    std::FILE* out = ::fdopen(fd, "wb");
+    if (!out) {
+      ::close(fd);
+      return Error::RcamFileDoesntExist;
+    }
+    const bool ok = std::fwrite(text.data(), 1, text.size(), out) == text.size();
+    return std::fclose(out) == 0 && ok ? Error::None : Error::RcamFileDoesntExist;
   });
 }
 

@@ -1,5 +1,6 @@
 // The SoftMotion face of the diagnostic, FB-error, touch-probe and cam-switch
 // blocks of sm3_diag.st.  Semantics: core/Diag.h; docs/motion-diag.md.
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -7,6 +8,9 @@
 #include "stdlib-motion/codesys_sm3/Sm3ErrorText.h"
 #include "stdlib-motion/codesys_sm3/Sm3Face.h"
 #include "stdlib-motion/core/Diag.h"
+#include "vm/FileSandbox.h"
+
+#include <unistd.h>
 
 using namespace stc::motion;
 using namespace stc::motion::sm3face;
@@ -238,6 +242,16 @@ void SMC_AxisDiagnosticLog(sm3::SMC_AxisDiagnosticLog* self) {
   FbSlot& s = kernel().slot(self->__handle, self, FbKind::Diagnostic, &publishLog);
   diag::LogConfig cfg;
   cfg.fileName = self->sFileName;
+  // Inside the data directory only (vm/FileSandbox.h): an absolute name, a '..' escape or a
+  // link out of it cannot be opened (2100 at the first WriteToFile, like any open failure).
+  cfg.open = [dir = MotionSession::current().filesDir(), name = cfg.fileName]() -> std::FILE* {
+    std::string why;
+    const int fd = stc::vm::openInside(dir, name, stc::vm::FileAccess::Write, why);
+    if (fd < 0) return nullptr;
+    std::FILE* f = ::fdopen(fd, "wb");
+    if (!f) ::close(fd);
+    return f;
+  };
   cfg.setPosition = self->bSetPosition;
   cfg.actPosition = self->bActPosition;
   cfg.setVelocity = self->bSetVelocity;

@@ -281,7 +281,7 @@ void writeToFile(FbSlot& fb) {
   const bool write = log->cfg.mode == LogMode::Continuous || log->closeRequested;
   if (!write) return;
   if (!log->fileOpen) {
-    log->file = std::fopen(log->cfg.fileName.c_str(), "wb");
+    log->file = log->cfg.open ? log->cfg.open() : std::fopen(log->cfg.fileName.c_str(), "wb");
     if (!log->file) {
       log->ioError = Error::AdlFileCannotBeOpened;
       log->recording = false;

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,10 @@ bool clearFbError(Axis& ax);              // false while the axis is in errorsto
 enum class LogMode : uint8_t { Continuous = 0, AtClose = 1 };
 struct LogConfig {
   std::string fileName;
+  // Opens the log file (truncated) at the first WriteToFile; null when it cannot.  The faces
+  // open inside the data directory (vm/FileSandbox.h); without it fileName is opened as is
+  // (the core's own tests).
+  std::function<std::FILE*()> open;
   bool setPosition = false, actPosition = false, setVelocity = false, actVelocity = false,
        setAcceleration = false, actAcceleration = false;
   char separator = '\t';

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -33,6 +34,7 @@
 #include "sema/Types.h"
 #include "tools/stc/Libraries.h"
 #include "vm/Controller.h"
+#include "vm/FileSandbox.h"
 #include "vm/Image.h"
 #include "vm/Time.h"
 #include "vm/testlib/TestLib.h"
@@ -649,14 +651,21 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
     }
     fs::path golden = fs::path(pr.dir) / "expected" / (sc.name + ".csv");
     if (pr.update) {
-      std::error_code ec;
-      fs::create_directories(golden.parent_path(), ec);
-      std::ofstream f(golden, std::ios::binary | std::ios::trunc);
-      f << actual;
-      f.close();
+      // Never outside the project: a symbolic link (expected/ itself, or a golden file)
+      // leading out of it is refused (vm/FileSandbox.h).
+      std::string why;
+      const int fd = vm::openInside(pr.dir, "expected/" + sc.name + ".csv", vm::FileAccess::WriteMakeDirs, why);
+      std::FILE* f = fd < 0 ? nullptr : ::fdopen(fd, "wb");
       if (!f) {
-        report += "  error: cannot write '" + golden.string() + "'\n";
+        if (fd >= 0) ::close(fd);
+        report += "  error: expected/" + sc.name + ".csv not written: " + (why.empty() ? "cannot open it" : why) + "\n";
         pass = false;
+      } else {
+        const bool ok = std::fwrite(actual.data(), 1, actual.size(), f) == actual.size();
+        if (std::fclose(f) != 0 || !ok) {
+          report += "  error: cannot write '" + golden.string() + "'\n";
+          pass = false;
+        }
       }
     } else {
       std::string expected;

@@ -175,6 +175,8 @@ struct BuildArgs : CheckArgs {
   std::string retain;
   std::string retainEvery;
   bool cold = false;
+  bool retainReset = false;
+  std::string dataDir;
   bool testlib = false;
 };
 
@@ -277,6 +279,11 @@ int runRun(const BuildArgs& a) {
   if (a.slice > 0) ro.slice = a.slice;
   ro.retainFile = a.retain;
   ro.cold = a.cold;
+  ro.retainReset = a.retainReset;
+  if (a.retainReset && a.retain.empty()) {
+    std::cerr << "stc: error: --retain-reset needs --retain FILE\n";
+    return 2;
+  }
   ro.realtime = a.realtime;
   ro.stats = a.stats;
   ro.watches = a.watches;
@@ -336,7 +343,9 @@ int runRun(const BuildArgs& a) {
       return 1;
     }
   }
-  // Loose files: their programs' files (SMC_ReadCAM ...) live beside the first one.
+  // The data directory: --data-dir, else the project's (readProject), else for loose
+  // files the directory of the first one (docs/security.md).
+  if (!a.dataDir.empty()) libs.motion.config().filesDir = a.dataDir;
   if (libs.motion.config().filesDir.empty() && !a.paths.empty()) {
     std::string d = std::filesystem::path(a.paths[0]).parent_path().string();
     libs.motion.config().filesDir = d.empty() ? "." : d;
@@ -387,7 +396,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("stc ") + STC_VERSION);
   app.require_subcommand(1);
   app.footer(
-      "Exit status: 0 success, 1 errors in the input (test: a failed scenario), 2 bad command line, 3 a runtime fault (run).");
+      "Exit status: 0 success, 1 errors in the input (test: a failed scenario), 2 bad command line (run: also a retain file\n"
+      "that is not one stc can use), 3 a runtime fault (run), 4 the retain file could not be saved (run).");
 
   CheckArgs ca;
   CLI::App* check = app.add_subcommand("check", "Parse and analyse ST sources or project directories");
@@ -430,6 +440,12 @@ int main(int argc, char** argv) {
   run->add_option("--retain", ra.retain, "Keep RETAIN/PERSISTENT variables in FILE across runs");
   run->add_option("--retain-every", ra.retainEvery, "Also save the retain file every DUR of simulated time");
   run->add_flag("--cold", ra.cold, "Cold start: restore only PERSISTENT variables");
+  run->add_flag("--retain-reset", ra.retainReset,
+                "Start from the initial values and replace the --retain FILE even if it is damaged or of a newer format "
+                "(a file that is not a retain file is never replaced)");
+  run->add_option("--data-dir", ra.dataDir,
+                  "Directory the program's files live in (SMC_ReadCAM, SMC_WriteCAM, diagnostic logs; default: the "
+                  "project's data_dir, else the first file's directory)");
 
   ExportArgs ea;
   CLI::App* exp = app.add_subcommand("export", "Write the checked program as PLCopen XML (CODESYS, Beremiz, TwinCAT import it)");
