@@ -40,10 +40,17 @@ public:
 
   DiagnosticsEngine& diags() { return diags_; }
   SourceManager& sources() { return sm_; }
+  // An error at element `n`; the import then reports failure (hadErrors).
+  void error(const pugi::xml_node& n, std::string msg, std::string code) {
+    diags_.error(at(n), std::move(msg), std::move(code));
+    errors_ = true;
+  }
+  bool hadErrors() const { return errors_; }
 
 private:
   SourceManager& sm_;
   DiagnosticsEngine& diags_;
+  bool errors_ = false;
   pugi::xml_document doc_;
   uint32_t file_ = 0;
 };

@@ -94,14 +94,11 @@ public:
       for (pugi::xml_node c : cfgs.children())
         if (c.type() == pugi::node_element && localName(c) == "configuration") configuration(c);
     if (w_.size()) out_.file = w_.finish(xml_.sources(), xml_.path());
-    return ok_;
+    return !xml_.hadErrors();
   }
 
 private:
-  void error(const pugi::xml_node& n, std::string msg, std::string code) {
-    xml_.diags().error(xml_.at(n), std::move(msg), std::move(code));
-    ok_ = false;
-  }
+  void error(const pugi::xml_node& n, std::string msg, std::string code) { xml_.error(n, std::move(msg), std::move(code)); }
 
   bool checkRoot(const pugi::xml_node& root) {
     std::string ns;
@@ -547,7 +544,6 @@ private:
   XmlFile& xml_;
   StWriter w_;
   ImportResult& out_;
-  bool ok_ = true;
 };
 
 }  // namespace

@@ -34,14 +34,11 @@ public:
       else unsupported(n);
     }
     if (w_.size()) out_.file = w_.finish(xml_.sources(), xml_.path());
-    return ok_;
+    return !xml_.hadErrors();
   }
 
 private:
-  void error(const pugi::xml_node& n, std::string msg, std::string code) {
-    xml_.diags().error(xml_.at(n), std::move(msg), std::move(code));
-    ok_ = false;
-  }
+  void error(const pugi::xml_node& n, std::string msg, std::string code) { xml_.error(n, std::move(msg), std::move(code)); }
   void unsupported(const pugi::xml_node& n) {
     xml_.diags().warning(xml_.at(n), "<" + std::string(n.name()) + "> is not supported; it is ignored", "import-ignored");
   }
@@ -160,7 +157,6 @@ private:
   XmlFile& xml_;
   StWriter w_;
   ImportResult& out_;
-  bool ok_ = true;
 };
 
 bool isAbsoluteWindowsOrPosix(const std::string& p) {
