@@ -134,6 +134,19 @@ private:
     out_.globals.push_back({begin, static_cast<uint32_t>(w_.size()), name(n)});
   }
 
+  // An IEC identifier; `dotted`: also Namespace.Name.
+  static bool isName(const std::string& s, bool dotted) {
+    bool start = true;
+    for (char c : s) {
+      bool letter = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_';
+      if (start && !letter) return false;
+      if (!start && c == '.' && dotted) { start = true; continue; }
+      if (!start && !letter && !(c >= '0' && c <= '9')) return false;
+      start = false;
+    }
+    return !s.empty() && !start;
+  }
+
   void task(const pugi::xml_node& n) {
     TwinCatTask t;
     t.name = name(n);
@@ -146,10 +159,24 @@ private:
       error(n, "task '" + t.name + "' needs a Name and a <CycleTime> in microseconds", "import");
       return;
     }
+    // The values become a CONFIGURATION: names must be names (never ST text), numbers in range.
+    if (!isName(t.name, false)) {
+      error(n, "task name '" + t.name + "' is not an identifier", "import");
+      return;
+    }
+    if (t.cycleMicros > 3'600'000'000ull || t.priority < 0 || t.priority > 255) {
+      error(n, "task '" + t.name + "': <CycleTime> must be 1..3600000000 us and <Priority> 0..255", "import");
+      return;
+    }
     for (pugi::xml_node c : n.children())
       if (c.type() == pugi::node_element && localName(c) == "PouCall") {
         std::string prog = child(c, "Name").text().as_string();
-        if (!prog.empty()) t.programs.push_back(prog);
+        if (prog.empty()) continue;
+        if (!isName(prog, true)) {
+          error(c, "program name '" + prog + "' of task '" + t.name + "' is not an identifier", "import");
+          return;
+        }
+        t.programs.push_back(prog);
       }
     out_.tasks.push_back(std::move(t));
   }
