@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <mutex>
 #include <string>
 
@@ -18,7 +19,17 @@ namespace {
 
 constexpr int kSignals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL};
 constexpr size_t kAltStackBytes = 256 * 1024;   // the fault report allocates and formats
-thread_local bool tAltStack = false;
+// The calling thread's alternate signal stack, released (and unregistered) when the thread ends.
+struct AltStack {
+  std::unique_ptr<char[]> memory;
+  ~AltStack() {
+    if (!memory) return;
+    stack_t off{};
+    off.ss_flags = SS_DISABLE;
+    sigaltstack(&off, nullptr);
+  }
+};
+thread_local AltStack tAltStack;
 
 std::string hexAddress(uintptr_t a) {
   char buf[32];
@@ -85,13 +96,14 @@ void installFaultSignals() {
     sigemptyset(&sa.sa_mask);
     for (int sig : kSignals) sigaction(sig, &sa, nullptr);
   });
-  if (!tAltStack) {
-    // Never freed: the thread may fault until it ends (one per controller thread).
+  if (!tAltStack.memory) {
+    // Kept until the thread ends: it may fault until then (one per controller thread).
+    auto memory = std::make_unique<char[]>(kAltStackBytes);
     stack_t ss{};
-    ss.ss_sp = new char[kAltStackBytes];
+    ss.ss_sp = memory.get();
     ss.ss_size = kAltStackBytes;
     ss.ss_flags = 0;
-    if (sigaltstack(&ss, nullptr) == 0) tAltStack = true;
+    if (sigaltstack(&ss, nullptr) == 0) tAltStack.memory = std::move(memory);
   }
 }
 
