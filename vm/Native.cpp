@@ -4,10 +4,6 @@
 
 namespace stc::vm {
 
-namespace detail {
-thread_local const SessionTable* tSessions = nullptr;
-}  // namespace detail
-
 SessionScope::SessionScope(const Table* t) : prev_(detail::tSessions) { detail::tSessions = t; }
 SessionScope::~SessionScope() { detail::tSessions = prev_; }
 

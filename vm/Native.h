@@ -81,7 +81,8 @@ public:
 
 namespace detail {
 using SessionTable = std::vector<std::pair<const void*, NativeSession*>>;
-extern thread_local const SessionTable* tSessions;   // set by SessionScope
+// constinit: accessed directly, without a TLS wrapper function (natives read it on every call).
+inline constinit thread_local const SessionTable* tSessions = nullptr;   // set by SessionScope
 }  // namespace detail
 
 // The session that the controller running on this thread keeps under `key`

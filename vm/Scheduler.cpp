@@ -20,9 +20,6 @@ stc::vm::CallChain* __stc_calls = &gOutsideTasks;
 }
 
 namespace stc::vm {
-namespace detail {
-thread_local Scheduler* tScheduler = nullptr;
-}
 namespace {
 using detail::tScheduler;
 

@@ -222,7 +222,7 @@ private:
 };
 
 namespace detail {
-extern thread_local Scheduler* tScheduler;   // set while a scheduler runs on this thread
+inline constinit thread_local Scheduler* tScheduler = nullptr;   // set while a scheduler runs on this thread (no TLS wrapper)
 }
 inline Scheduler* Scheduler::current() { return detail::tScheduler; }
 
