@@ -23,7 +23,7 @@ std::unique_ptr<vm::NativeSession> MotionLibrary::newSession() const { return st
 
 bool MotionLibrary::readProject(const std::string& dir, const std::vector<std::string>& libraries, std::string& error) {
   cfg_.filesDir = dir;
-  return loadProjectAxes(dir, cfg_.axes, error) && loadProjectIo(dir, cfg_.io, error) && loadProjectCams(dir, cfg_.cams, error) &&
+  return checkProjectToml(dir, error) && loadProjectAxes(dir, cfg_.axes, error) && loadProjectIo(dir, cfg_.io, error) && loadProjectCams(dir, cfg_.cams, error) &&
          loadProjectVendorProfile(dir, libraries, cfg_.profile, error);
 }
 
