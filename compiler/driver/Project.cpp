@@ -87,8 +87,22 @@ bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error)
   fs::path src = root / "src";
   std::error_code ec;
   if (fs::is_directory(src, ec)) {
-    for (auto it = fs::recursive_directory_iterator(src, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
-      if (it->is_regular_file() && isSourceFile(it->path())) out.sources.push_back(it->path().string());
+    for (auto it = fs::recursive_directory_iterator(src, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+      // Error codes everywhere: a symbolic-link loop must not throw.  A source name on
+      // something that is not a file (a FIFO would block, a loop has no text) is an error.
+      std::error_code sec;
+      if (it->is_directory(sec) || !isSourceFile(it->path())) continue;
+      std::string why;
+      if (!config::checkRegularFile(it->path().string(), why)) {
+        error = it->path().string() + ": error: " + why;
+        return false;
+      }
+      out.sources.push_back(it->path().string());
+    }
+    if (ec) {
+      error = src.string() + ": error: cannot list the sources: " + ec.message();
+      return false;
+    }
   }
   std::sort(out.sources.begin(), out.sources.end());
   if (out.sources.empty()) {
