@@ -3,8 +3,9 @@
 
 Copies an example project, mutates its project.toml and scenario files (hostile values:
 NaN, Inf, negative limits, bad and overflowing durations, injection text, typos in keys,
-duplicated, dropped or truncated lines, random bytes ...) and runs `stc check` and
-`stc test` on it.  Any signal, abort, sanitizer report, crashed child or timeout is a
+duplicated, dropped or truncated lines, random bytes ...; now and then a file replaced by a
+FIFO, a directory, a symbolic-link loop or /dev/zero) and runs `stc check` and `stc test`
+on it.  Any signal, abort, sanitizer report, crashed child or timeout is a
 failure: the mutated project is kept under OUT/crash-N/ and the exit status is 1.
 Exit statuses 0, 1 and 2 are fine (the input may be valid or refused).
 
@@ -16,6 +17,7 @@ import os
 import random
 import re
 import shutil
+import stat
 import subprocess
 import sys
 import tempfile
@@ -101,6 +103,26 @@ def mutate(text, rng):
     return "\n".join(lines)
 
 
+def replace_by_special(proj, rng):
+    """A file the tools read replaced by a FIFO, a directory, a symbolic-link loop or a device:
+    a clear error, never a hang (the per-command timeout catches one)."""
+    cands = [os.path.join(proj, "project.toml")]
+    for sub in ("scenarios", "expected", "src"):
+        d = os.path.join(proj, sub)
+        if os.path.isdir(d):
+            cands += [os.path.join(d, f) for f in os.listdir(d)]
+    f = rng.choice(cands)
+    if os.path.isdir(f) and not os.path.islink(f):
+        shutil.rmtree(f)
+    elif os.path.lexists(f):
+        os.remove(f)
+    kind = rng.randrange(4)
+    if kind == 0: os.mkfifo(f)
+    elif kind == 1: os.mkdir(f)
+    elif kind == 2: os.symlink(os.path.basename(f), f)
+    else: os.symlink("/dev/zero", f)
+
+
 UNITS = {"d": 86400.0, "h": 3600.0, "m": 60.0, "s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}
 
 
@@ -118,13 +140,18 @@ def too_long(project):
     to run it, but it would take minutes, so only `stc check` is run on such inputs."""
     if tomllib is None:
         return False
+    regular = lambda p: os.path.isfile(p) and not stat.S_ISFIFO(os.stat(p).st_mode)
     try:
+        if not regular(os.path.join(project, "project.toml")):
+            return False
         with open(os.path.join(project, "project.toml"), "rb") as f:
             cfg = tomllib.load(f)
         for t in cfg.get("task", []) if isinstance(cfg.get("task"), list) else []:
             if isinstance(t, dict) and isinstance(t.get("interval"), str) and 0 < seconds(t["interval"]) < 1e-4:
                 return True
         for name in os.listdir(os.path.join(project, "scenarios")):
+            if not regular(os.path.join(project, "scenarios", name)):
+                continue
             with open(os.path.join(project, "scenarios", name), "rb") as f:
                 sc = tomllib.load(f)
             d, c = sc.get("duration"), sc.get("cycles")
@@ -144,11 +171,16 @@ BAD_OUTPUT = re.compile(r"AddressSanitizer|UndefinedBehaviorSanitizer|runtime er
 
 
 def run(cmd, timeout):
+    # A process group of its own: on a timeout the whole group goes (stc test's children
+    # hold the output pipe too).
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True)
     try:
-        p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=timeout)
-        return p.returncode, p.stdout.decode("utf-8", "replace")
-    except subprocess.TimeoutExpired as e:
-        return "timeout", (e.stdout or b"").decode("utf-8", "replace")
+        out, _ = p.communicate(timeout=timeout)
+        return p.returncode, out.decode("utf-8", "replace")
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, 9)
+        out, _ = p.communicate()
+        return "timeout", out.decode("utf-8", "replace")
 
 
 def main():
@@ -188,6 +220,8 @@ def main():
                     text = h.read()
                 with open(f, "w", encoding="utf-8", errors="surrogateescape") as h:
                     h.write(mutate(text, rng))
+            if rng.random() < 0.05:
+                replace_by_special(proj, rng)
             cmds = [[a.stc, "check", proj]]
             if not too_long(proj):
                 cmds.append([a.stc, "test", "-j", "1", proj])
