@@ -373,6 +373,29 @@ libraries = ["codesys_sm3"]
 name = "Axis1"
 increments_per_unit = 1000
 encoder_resolution = 131072'
+  # kv against the owning task's cycle: kv x cycle >= 1 makes the sampled position loop run away.
+  for case in "1ms 999 0" "1ms 1000 1" "4ms 500 1" "4ms 249 0"; do
+    set -- $case
+    project kv <<EOF
+[project]
+libraries = ["codesys_sm3"]
+[[task]]
+name = "Motion"
+interval = "$1"
+programs = ["MAIN"]
+[[axis]]
+name = "Axis1"
+type = "servo"
+drive = "lag"
+kv = $2
+EOF
+    printf 'VAR_GLOBAL\n  Axis1 : AXIS_REF_SM3;\nEND_VAR\n' >"$TMP/kv/src/Axes.st"
+    if [ "$3" = 0 ]; then
+      expect "kv-$2-cycle-$1" 0 "" -- "$STC" run "$TMP/kv" --cycles 3
+    else
+      expect "kv-$2-cycle-$1" 1 "kv/project.toml:11:6: \\[\\[axis\\]\\] 'Axis1': kv = $2 with the T#$1 cycle of task 'Motion' makes the position loop unstable \\(kv x cycle time must be < 1: kv < [0-9]+\\)" -- "$STC" run "$TMP/kv" --cycles 3
+    fi
+  done
   expect scaling-twice 1 "project.toml:3:1: error: \[\[axis\]\]: give only one of increments_per_unit or encoder_resolution" -- "$STC" check "$TMP/scale"
   ;;
 *)
