@@ -250,6 +250,12 @@ files)
   expect source-fifo 1 "f/src/fifo.st: is a FIFO \(named pipe\), not a file" -- "$STC" check "$TMP/f"
   expect source-fifo-file 1 "fifo.st: cannot open file: is a FIFO \(named pipe\), not a file" -- "$STC" check "$TMP/f/src/fifo.st"
   rm "$TMP/f/src/fifo.st"
+  rm -rf "$TMP/f/scenarios"
+  ln -s scenarios "$TMP/f/scenarios"
+  expect scenarios-dir-link-loop 1 "scenarios: error: is a symbolic link loop, not a directory of scenarios" -- "$STC" test "$TMP/f"
+  rm "$TMP/f/scenarios"
+  touch "$TMP/f/scenarios"
+  expect scenarios-dir-file 1 "scenarios: error: is a file, not a directory of scenarios" -- "$STC" test "$TMP/f"
   project p <<<''
   rm "$TMP/p/project.toml"
   mkfifo "$TMP/p/project.toml"

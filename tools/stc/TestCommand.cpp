@@ -671,6 +671,15 @@ void runProject(ProjectRun& pr) {
   std::error_code ec;
   // Every entry named *.toml is a scenario: one that is not a file (a directory, FIFO,
   // link loop ...) fails with that message rather than being skipped.
+  if (fs::exists(fs::symlink_status(scenDir, ec)) && !fs::is_directory(scenDir, ec)) {
+    std::string why;
+    config::checkRegularFile(scenDir.string(), why);
+    if (why.empty()) why = "is a file";
+    if (why.size() > 12 && why.compare(why.size() - 12, 12, ", not a file") == 0) why.resize(why.size() - 12);
+    pr.out += "FAIL " + pr.label + "\n  scenarios: error: " + why + ", not a directory of scenarios\n";
+    ++pr.failed;
+    return;
+  }
   if (fs::is_directory(scenDir, ec))
     for (const auto& e : fs::directory_iterator(scenDir, ec))
       if (e.path().extension() == ".toml") files.push_back(e.path());
