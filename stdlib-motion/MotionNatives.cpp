@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 #include <stdexcept>
 #include <toml++/toml.h>
 
@@ -14,6 +15,14 @@
 
 namespace stc::motion {
 
+namespace {
+std::string shortNumber(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+}  // namespace
+
 MotionLibrary::MotionLibrary(MotionConfig cfg) : cfg_(std::move(cfg)) {
   registerSm3Natives(*this);
   registerMotionTestNatives(*this);
@@ -23,7 +32,8 @@ const void* MotionLibrary::sessionKey() const { return &kMotionSessionKey; }
 std::unique_ptr<vm::NativeSession> MotionLibrary::newSession() const { return std::make_unique<MotionSession>(*this, cfg_); }
 
 bool MotionLibrary::readProject(const std::string& dir, const std::vector<std::string>& libraries, std::string& error) {
-  return loadProjectDataDir(dir, cfg_.filesDir, error) && loadProjectAxes(dir, cfg_.axes, error) && loadProjectIo(dir, cfg_.io, error) && loadProjectCams(dir, cfg_.cams, error) &&
+  return checkProjectToml(dir, error) && loadProjectDataDir(dir, cfg_.filesDir, error) && loadProjectAxes(dir, cfg_.axes, error, &cfg_.axisWhere) &&
+         loadProjectIo(dir, cfg_.io, error) && loadProjectCams(dir, cfg_.cams, error) &&
          loadProjectVendorProfile(dir, libraries, cfg_.profile, error);
 }
 
@@ -88,6 +98,20 @@ bool MotionSession::start(const vm::StartCtx& sc, std::string& error) {
       return false;
     }
     ax.task = task;
+    // The position loop samples once per cycle: with kv x cycle time >= 1 it overshoots
+    // more every cycle and the actual position runs away while the axis is "standing".
+    if (task != UINT32_MAX && cfg.drive.model == DriveModel::Lag) {
+      const vm::TaskConfig& tc = sc.scheduler.task(task);
+      const double cycle = static_cast<double>(tc.kind == vm::TaskKind::Cyclic ? tc.interval : sc.scheduler.baseTick()) * 1e-9;
+      if (cycle > 0 && cfg.drive.kv * cycle >= 1) {
+        const size_t i = static_cast<size_t>(&cfg - cfg_.axes.data());
+        error = (i < cfg_.axisWhere.size() ? cfg_.axisWhere[i] : std::string("project.toml: ")) + "[[axis]] '" + cfg.name +
+                "': kv = " + shortNumber(cfg.drive.kv) + " with the " + vm::formatIecTime(static_cast<int64_t>(cycle * 1e9)) +
+                " cycle of task '" + tc.name + "' makes the position loop unstable (kv x cycle time must be < 1: kv < " +
+                shortNumber(1 / cycle) + ")";
+        return false;
+      }
+    }
     bindVar(ax, ref, f->mirror);
     f->bound(ref, ax);
     mirror(ax);
@@ -185,7 +209,7 @@ bool loadProjectVendorProfile(const std::string& dir, const std::vector<std::str
   return true;
 }
 
-bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error) {
+bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error, std::vector<std::string>* whereOut) {
   std::string file;
   toml::table tbl;
   const toml::array* axes = projectTables(dir, "axis", tbl, file);
@@ -310,6 +334,7 @@ bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::
       }
     }
     out.push_back(std::move(c));
+    if (whereOut) whereOut->push_back(where(file, t->get("kv") ? *t->get("kv") : node));
   }
   return true;
 }

@@ -47,6 +47,9 @@ struct MotionConfig {
   // [project] data_dir (default <project>/data), `stc run --data-dir`, or for loose files
   // the directory of the first one.
   std::string filesDir;
+  // "project.toml:line:col: " of the [[axis]] tables, by axis (for the checks at start
+  // that need the tasks, e.g. kv against the cycle time).
+  std::vector<std::string> axisWhere;
 };
 
 // How a face binds a configured axis to an axis variable of its type (e.g.
@@ -169,7 +172,8 @@ inline Kernel& kernel() { return MotionSession::current().kernel; }
 
 // The axes of the project ([[axis]] tables of `dir`/project.toml).  False with
 // `error` (file:line:col: message) on a bad table; no file or no table is fine.
-bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error);
+// `where` (optional) gets "file:line:col: " of each axis's kv (else of its table), in order.
+bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error, std::vector<std::string>* where = nullptr);
 
 // The vendor profile of the run (docs/motion.md, "Vendor profiles").  From project.toml:
 // [project] motion_profile = "amc1600c" | "leadshine_pmc600"; without it, leadshine_pmc600

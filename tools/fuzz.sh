@@ -3,8 +3,19 @@
 # Builds build-fuzz/ with clang-19, ASan and UBSan; seeds from the test sources.
 # Crashing inputs land in build-fuzz/crashes/; copy minimised ones to
 # tests/fuzz/regressions/ so the test suite replays them.
+#
+# tools/fuzz.sh --config [SECONDS] [ARGS...]: the mutation fuzzer of project.toml and
+# scenarios/*.toml instead (tools/fuzz_config.py on build/stc: mutated example projects
+# through stc check / stc test; a signal, abort or timeout fails).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "${1:-}" = "--config" ]; then
+  shift
+  SECONDS_TO_RUN=${1:-600}
+  shift || true
+  tools/build.sh >/dev/null
+  exec python3 tools/fuzz_config.py "$SECONDS_TO_RUN" --stc build/stc "$@"
+fi
 SECONDS_TO_RUN=${1:-600}
 if [ ! -f build-fuzz/build.ninja ]; then
   CC=clang-19 CXX=clang++-19 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "config/Duration.h"
+
 namespace stc::vm {
 
 std::string formatIecTime(Time t, std::string_view prefix) {
@@ -45,32 +47,10 @@ std::string formatSeconds(Time t) {
 }
 
 bool parseIecDuration(std::string_view text, Time& out) {
-  std::string t;
-  for (char c : text)
-    if (c != '_' && c != ' ') t += static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
-  for (const char* p : {"ltime#", "time#", "lt#", "t#"})
-    if (t.rfind(p, 0) == 0) { t = t.substr(std::string_view(p).size()); break; }
-  bool neg = false;
-  if (!t.empty() && (t[0] == '-' || t[0] == '+')) { neg = t[0] == '-'; t = t.substr(1); }
-  if (t.empty()) return false;
-  long double total = 0;
-  size_t i = 0;
-  while (i < t.size()) {
-    size_t j = i;
-    while (j < t.size() && ((t[j] >= '0' && t[j] <= '9') || t[j] == '.')) ++j;
-    if (j == i) return false;
-    long double n = std::stold(t.substr(i, j - i));
-    size_t u = j;
-    while (u < t.size() && t[u] >= 'a' && t[u] <= 'z') ++u;
-    std::string unit = t.substr(j, u - j);
-    long double f = unit == "d" ? 86'400e9L : unit == "h" ? 3'600e9L : unit == "m" ? 60e9L : unit == "s" ? 1e9L
-                    : unit == "ms" ? 1e6L : unit == "us" ? 1e3L : unit == "ns" ? 1.0L : 0;
-    if (f == 0) return false;
-    total += n * f;
-    i = u;
-  }
-  out = static_cast<Time>(neg ? -total : total);
-  return true;
+  // Blanks around the literal are allowed here (STRING_TO_TIME('  T#5ms')), not inside.
+  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+  return config::parseDuration(text, out);
 }
 
 }  // namespace stc::vm

@@ -25,6 +25,7 @@ std::string formatSeconds(Time t);
 
 // Parses a duration: T#1s500ms, TIME#-2m, LTIME#5us, 1d2h, 250ms, 1.5s (a
 // fraction on the last component).  False if the text is not a duration.
+// The grammar is config::parseDuration's (compiler/config/Duration.h).
 bool parseIecDuration(std::string_view text, Time& out);
 
 }  // namespace stc::vm

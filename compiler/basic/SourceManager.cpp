@@ -1,4 +1,5 @@
 #include "basic/SourceManager.h"
+#include "config/ConfigSchema.h"
 
 #include <algorithm>
 #include <fstream>
@@ -112,18 +113,14 @@ bool SourceManager::isVerbatim(SourceLoc loc) const {
 }
 
 uint32_t SourceManager::loadFile(const std::string& path, std::string& error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    error = "cannot open file";
+  // Regular files only: a FIFO would block, a directory or link loop has no text.
+  // Offsets are 32-bit: at most 2 GB.
+  std::string text, why;
+  if (!config::readRegularFile(path, text, why, uint64_t(1) << 31)) {
+    error = "cannot open file: " + (why == "does not exist" ? std::string("no such file") : why);
     return 0;
   }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) {
-    error = "cannot read file";
-    return 0;
-  }
-  return addBuffer(path, ss.str());
+  return addBuffer(path, std::move(text));
 }
 
 void SourceManager::computeLines(SourceFile& f) const {

@@ -1,4 +1,5 @@
 #include "driver/Driver.h"
+#include "config/ConfigSchema.h"
 #include "sema/Model.h"
 
 #include <pthread.h>
@@ -64,6 +65,35 @@ bool Compilation::addImported(const std::string& path) {
   return ok || r.file != 0;
 }
 
+// A project.toml error "file:line:col: error: message" as a diagnostic at that
+// place (with the source line and a caret); "file: error: message" without one.
+void Compilation::projectError(const std::string& error) {
+  const size_t e = error.find(": error: ");
+  if (e == std::string::npos) {
+    diags_.error(SourceLoc{}, error, "project");
+    return;
+  }
+  const std::string prefix = error.substr(0, e), message = error.substr(e + 9);
+  auto digits = [](const std::string& x) { return !x.empty() && x.size() < 9 && std::all_of(x.begin(), x.end(), ::isdigit); };
+  const size_t c2 = prefix.rfind(':'), c1 = c2 == std::string::npos || c2 == 0 ? std::string::npos : prefix.rfind(':', c2 - 1);
+  std::string text, why;
+  if (c1 != std::string::npos && digits(prefix.substr(c1 + 1, c2 - c1 - 1)) && digits(prefix.substr(c2 + 1)) &&
+      config::readRegularFile(prefix.substr(0, c1), text, why)) {
+    const uint32_t id = sm_.addBuffer(prefix.substr(0, c1), std::move(text));
+    const unsigned line = std::clamp<unsigned>(static_cast<unsigned>(std::stoul(prefix.substr(c1 + 1, c2 - c1 - 1))), 1, std::max(1u, sm_.lineCount(id)));
+    const unsigned col = static_cast<unsigned>(std::stoul(prefix.substr(c2 + 1)));
+    const uint32_t begin = sm_.lineStart(id, line);
+    const std::string_view lineText = sm_.lineText(SourceLoc{id, begin});
+    // toml++ counts columns in characters: step over UTF-8 continuation bytes.
+    uint32_t off = 0;
+    for (unsigned c = 1; c < col && off < lineText.size(); ++c)
+      for (++off; off < lineText.size() && (static_cast<unsigned char>(lineText[off]) & 0xC0) == 0x80;) ++off;
+    diags_.error(SourceLoc{id, begin + off}, message, "project");
+    return;
+  }
+  diags_.error(SourceLoc{}, prefix + ": " + message, "project");
+}
+
 void Compilation::addBuffer(const std::string& name, std::string text) {
   files_.push_back(sm_.addBuffer(name, std::move(text)));
 }
@@ -73,7 +103,8 @@ bool Compilation::addPath(const std::string& path) {
   if (fs::is_directory(path, ec)) {
     ProjectConfig pc;
     std::string error;
-    if (!fs::exists(fs::path(path) / "project.toml")) {
+    // Any kind of entry named project.toml makes a project (loadProject says what is wrong with it).
+    if (!fs::exists(fs::symlink_status(fs::path(path) / "project.toml", ec))) {
       // A TwinCAT PLC project directory: the one .plcproj in it.
       std::vector<std::string> plcproj;
       for (const fs::directory_entry& e : fs::directory_iterator(path, ec))
@@ -85,7 +116,7 @@ bool Compilation::addPath(const std::string& path) {
       return false;
     }
     if (!loadProject(path, pc, error)) {
-      diags_.error(SourceLoc{}, error, "project");
+      projectError(error);
       return false;
     }
     if (pc.dialect) projectDialect_ = pc.dialect;
@@ -94,7 +125,11 @@ bool Compilation::addPath(const std::string& path) {
     projectLibraries_.insert(projectLibraries_.end(), pc.libraries.begin(), pc.libraries.end());
     bool ok = true;
     for (const std::string& s : pc.sources) ok = addPath(s) && ok;
-    if (!pc.tasksSource.empty()) addBuffer((fs::path(path) / "project.toml [[task]]").string(), pc.tasksSource);
+    if (!pc.tasksSource.empty()) {
+      addBuffer((fs::path(path) / "project.toml [[task]]").string(), pc.tasksSource);
+      tasksFile_ = files_.back();
+      tasksWhere_ = pc.tasksWhere;
+    }
     return ok;
   }
   if (import::kindOf(path) != import::FileKind::None) return addImported(path);
@@ -281,6 +316,15 @@ bool Compilation::check(const CompileOptions& opts) {
       g->listName.range = SourceRange(SourceLoc{u.file, 0});
     }
   }
+  // [[task]] tables and an ST CONFIGURATION (or TwinCAT tasks) both define the tasks: one of them.
+  if (tasksFile_)
+    for (ast::SourceUnit& u : ast_->units())
+      for (ast::Decl* d : u.decls)
+        if (ast::isa<ast::ConfigurationDecl>(d) && u.file != tasksFile_ && !sm_.file(u.file).library) {
+          diags_.error(d->range.begin, "this CONFIGURATION and the [[task]] tables of " + tasksWhere_ +
+                                           " both define the tasks; keep one of them (docs/projects.md)", "project");
+          parsed = false;
+        }
   auto t1 = clock::now();
   stats_.parseSeconds = std::chrono::duration<double>(t1 - t0).count();
   sema::SemaOptions so;

@@ -28,6 +28,7 @@ struct ProjectConfig {
   std::vector<std::string> libraries;    // [project] libraries: optional libraries of stdlib-motion/ (e.g. codesys_sm3)
   // [[task]] tables: the CONFIGURATION they stand for, as ST ("" = none; tasks come from the sources).
   std::string tasksSource;
+  std::string tasksWhere;                // "dir/project.toml:L:C" of the first [[task]]
 };
 
 // The names of the optional libraries built into the compiler.
@@ -90,6 +91,9 @@ private:
   struct Imports;                       // what the XML importers found (Driver.cpp)
   std::unique_ptr<Imports> imports_;
   bool addImported(const std::string& path);
+  void projectError(const std::string& error);
+  uint32_t tasksFile_ = 0;              // the [[task]] tables' CONFIGURATION (0: none)
+  std::string tasksWhere_;              // where the first [[task]] is
   std::optional<sema::Dialect> projectDialect_;
   std::optional<unsigned> projectAddressBits_;
   unsigned addressBits_ = 32;

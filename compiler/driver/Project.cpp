@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <toml++/toml.h>
 
+#include "config/ConfigSchema.h"
+#include "config/Duration.h"
 #include "driver/Driver.h"
 #include "import/Import.h"
 
@@ -21,30 +23,17 @@ bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error)
   fs::path root(dir);
   fs::path manifest = root / "project.toml";
   out.root = root.string();
+  // Read and validated against the schema (compiler/config/ConfigSchema.cpp):
+  // below, every value has its type and range.
   toml::table tbl;
-  try {
-    tbl = toml::parse_file(manifest.string());
-  } catch (const toml::parse_error& e) {
-    const auto& src = e.source();
-    error = manifest.string() + ":" + std::to_string(src.begin.line) + ":" + std::to_string(src.begin.column) + ": " +
-            std::string(e.description());
-    return false;
-  }
+  if (!config::loadProjectToml(dir, tbl, error)) return false;
+  auto at = [&](const toml::node& n) { return config::where(manifest.string(), n) + ": error: "; };
   out.name = tbl["project"]["name"].value_or(root.filename().string());
-  if (auto d = tbl["build"]["dialect"].value<std::string>()) {
-    if (*d == "iec") out.dialect = sema::Dialect::IEC;
-    else if (*d == "codesys") out.dialect = sema::Dialect::Codesys;
-    else {
-      error = manifest.string() + ": [build] dialect must be \"iec\" or \"codesys\", not \"" + *d + "\"";
-      return false;
-    }
-  }
+  if (auto d = tbl["build"]["dialect"].value<std::string>()) out.dialect = *d == "iec" ? sema::Dialect::IEC : sema::Dialect::Codesys;
   if (const toml::node* am = tbl["build"]["address_model"].node()) {
     std::optional<int64_t> bits = am->value<int64_t>();
     if (!bits || (*bits != 32 && *bits != 64)) {
-      auto src = am->source();
-      error = manifest.string() + ":" + std::to_string(src.begin.line) + ":" + std::to_string(src.begin.column) +
-              ": [build] address_model must be 32 or 64";
+      error = at(*am) + "[build] address_model must be 32 or 64";
       return false;
     }
     out.addressBits = static_cast<unsigned>(*bits);
@@ -57,51 +46,40 @@ bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error)
     for (const toml::node& n : *libs) {
       auto name = n.value<std::string>();
       if (!name || std::find(known.begin(), known.end(), *name) == known.end()) {
-        const auto& src = n.source();
         std::string list;
         for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-        error = manifest.string() + ":" + std::to_string(src.begin.line) + ":" + std::to_string(src.begin.column) +
-                ": [project] libraries: unknown library" + (name ? " '" + *name + "'" : "") + " (known: " + list + ")";
+        std::string hint = name ? config::closest(*name, known) : std::string();
+        error = at(n) + "[project] libraries: unknown library" + (name ? " '" + *name + "'" : "") + " (known: " + list + ")" +
+                (hint.empty() ? "" : "; did you mean '" + hint + "'?");
         return false;
       }
       out.libraries.push_back(*name);
     }
   }
   // [[task]] tables: a CONFIGURATION written for the user (one RESOURCE, each
-  // program instance named like its PROGRAM type).
-  if (const toml::array* tasks = tbl["task"].as_array()) {
-    auto at = [&](const toml::node& n) {
-      return manifest.string() + ":" + std::to_string(n.source().begin.line) + ":" + std::to_string(n.source().begin.column) + ": ";
-    };
-    auto ident = [](const std::string& x) {
-      return !x.empty() && (std::isalpha(static_cast<unsigned char>(x[0])) || x[0] == '_') &&
-             std::all_of(x.begin(), x.end(), [](unsigned char c) { return std::isalnum(c) || c == '_'; });
-    };
+  // program instance named like its PROGRAM type).  Only validated values
+  // reach the text: names are ST identifiers, the event a variable path, the
+  // interval is re-written from its nanoseconds and the priority from its
+  // integer, so no value can add text of its own.
+  if (const toml::array* tasks = tbl["task"].as_array(); tasks && !tasks->empty()) {
+    out.tasksWhere = config::where(manifest.string(), *tasks->get(0));
     std::string text = "CONFIGURATION __project\n  RESOURCE __cpu ON PLC\n";
     std::string programs;
     for (const toml::node& n : *tasks) {
-      const toml::table* t = n.as_table();
-      auto name = t ? (*t)["name"].value<std::string>() : std::nullopt;
-      auto interval = t ? (*t)["interval"].value<std::string>() : std::nullopt;
-      auto event = t ? (*t)["event"].value<std::string>() : std::nullopt;
-      auto priority = t ? (*t)["priority"].value<int64_t>() : std::nullopt;
-      const toml::array* progs = t ? (*t)["programs"].as_array() : nullptr;
-      if (!name || !ident(*name) || (!interval == !event) || !progs || progs->empty()) {
-        error = at(n) + "a [[task]] needs name = \"IDENT\", interval = \"10ms\" (cyclic) or event = \"VAR\" (on its rising edge), "
-                        "and programs = [\"PROGRAM\", ...]; optional priority = N";
-        return false;
+      const toml::table& t = *n.as_table();
+      const std::string name = *t["name"].value<std::string>();
+      std::string kind;
+      if (auto iv = t["interval"].value<std::string>()) {
+        int64_t ns = 0;
+        config::parseDuration(*iv, ns);
+        kind = "INTERVAL := " + config::formatDuration(ns);
+      } else {
+        kind = "SINGLE := " + *t["event"].value<std::string>();
       }
-      std::string iv = interval ? *interval : "";
-      if (interval && !(iv.size() > 2 && (iv.compare(0, 2, "T#") == 0 || iv.compare(0, 2, "t#") == 0))) iv = "T#" + iv;
-      text += "    TASK " + *name + "(" + (interval ? "INTERVAL := " + iv : "SINGLE := " + *event) +
-              ", PRIORITY := " + std::to_string(priority.value_or(0)) + ");\n";
-      for (const toml::node& p : *progs) {
-        auto prog = p.value<std::string>();
-        if (!prog || !ident(*prog)) {
-          error = at(p) + "[[task]] programs: a PROGRAM name";
-          return false;
-        }
-        programs += "    PROGRAM " + *prog + " WITH " + *name + " : " + *prog + ";\n";
+      text += "    TASK " + name + "(" + kind + ", PRIORITY := " + std::to_string(t["priority"].value_or<int64_t>(0)) + ");\n";
+      for (const toml::node& p : *t["programs"].as_array()) {
+        const std::string prog = *p.value<std::string>();
+        programs += "    PROGRAM " + prog + " WITH " + name + " : " + prog + ";\n";
       }
     }
     out.tasksSource = text + programs + "  END_RESOURCE\nEND_CONFIGURATION\n";
@@ -109,8 +87,22 @@ bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error)
   fs::path src = root / "src";
   std::error_code ec;
   if (fs::is_directory(src, ec)) {
-    for (auto it = fs::recursive_directory_iterator(src, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
-      if (it->is_regular_file() && isSourceFile(it->path())) out.sources.push_back(it->path().string());
+    for (auto it = fs::recursive_directory_iterator(src, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+      // Error codes everywhere: a symbolic-link loop must not throw.  A source name on
+      // something that is not a file (a FIFO would block, a loop has no text) is an error.
+      std::error_code sec;
+      if (it->is_directory(sec) || !isSourceFile(it->path())) continue;
+      std::string why;
+      if (!config::checkRegularFile(it->path().string(), why)) {
+        error = it->path().string() + ": error: " + why;
+        return false;
+      }
+      out.sources.push_back(it->path().string());
+    }
+    if (ec) {
+      error = src.string() + ": error: cannot list the sources: " + ec.message();
+      return false;
+    }
   }
   std::sort(out.sources.begin(), out.sources.end());
   if (out.sources.empty()) {

@@ -198,7 +198,7 @@ trace = ["Axis1.__stcAxis"]'
   has "GVL.nLevel: '11' is not in the subrange 0..10"
   has "MAIN.state: 'Running' is not a value of E_State (E_State#Idle, E_State#Moving, E_State#Done, E_State#Failed)"
   has "FAIL p/no_length"
-  has "scenarios/no_length.toml: error: the scenario needs duration"
+  has "scenarios/no_length.toml:1:1: error: the scenario needs exactly one of duration or cycles"
   has "FAIL p/no_axis"
   has "no [[axis]] named 'Axis9'"
   has "FAIL p/internal_set"

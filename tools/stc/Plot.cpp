@@ -1,5 +1,7 @@
 #include "tools/stc/Plot.h"
 
+#include "config/ConfigSchema.h"
+
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -515,6 +517,12 @@ void drawState(Svg& s, const Layout& L, const Column& c, const std::vector<doubl
 
 bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, bool& missing) {
   missing = false;
+  std::string why;
+  if (!config::checkRegularFile(path, why)) {   // a FIFO would block
+    missing = true;
+    error = fmt::format("cannot open '{}': {}", path, why);
+    return false;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     missing = true;

@@ -28,6 +28,7 @@
 
 #include "basic/Text.h"
 #include "codegen/CodeGen.h"
+#include "config/ConfigSchema.h"
 #include "driver/Driver.h"
 #include "sema/Layout.h"
 #include "sema/Model.h"
@@ -108,29 +109,14 @@ bool durationOf(const toml::node* n, vm::Time& out) {
 bool loadScenario(const fs::path& path, const std::string& shown, Scenario& sc, std::string& error) {
   sc.file = shown;
   sc.name = path.stem().string();
+  // Read, parsed and validated against the schema (compiler/config/ConfigSchema.cpp):
+  // below, every key is known and every value has its type and range.
   toml::table tbl;
-  try {
-    tbl = toml::parse_file(path.string());
-  } catch (const toml::parse_error& e) {
-    const auto& s = e.source();
-    error = shown + (s.begin ? ":" + std::to_string(s.begin.line) + ":" + std::to_string(s.begin.column) : std::string()) + ": error: " +
-            std::string(e.description());
-    return false;
-  }
+  if (!config::loadToml(path.string(), shown, config::scenarioSchema(), tbl, error)) return false;
   auto fail = [&](const toml::node& n, const std::string& msg) {
     error = where(shown, n) + ": error: " + msg;
     return false;
   };
-  auto failKey = [&](const toml::key& k, const toml::node& v, const std::string& msg) {
-    const auto& s = k.source();
-    error = (s.begin ? shown + ":" + std::to_string(s.begin.line) + ":" + std::to_string(s.begin.column) : where(shown, v)) + ": error: " + msg;
-    return false;
-  };
-  static const char* const topKeys[] = {"description", "duration", "cycles", "trace", "tolerance", "set", "fault", "check"};
-  for (auto&& [k, v] : tbl) {
-    if (std::find(std::begin(topKeys), std::end(topKeys), k.str()) == std::end(topKeys))
-      return failKey(k, v, "unknown key '" + std::string(k.str()) + "' (expected description, duration, cycles, trace, tolerance, [[set]], [[fault]], [[check]])");
-  }
   if (const toml::node* d = tbl.get("duration")) {
     vm::Time t = 0;
     if (!durationOf(d, t) || t == 0) return fail(*d, "duration must be a positive duration string, e.g. \"3s\" or \"T#500ms\"");
@@ -168,18 +154,11 @@ bool loadScenario(const fs::path& path, const std::string& shown, Scenario& sc, 
     if (!out || !out->is_array_of_tables()) return fail(*n, std::string("'") + key + "' must be an array of tables ([[" + key + "]])");
     return true;
   };
-  auto checkKeys = [&](const toml::table& t, std::initializer_list<const char*> keys, const char* what) {
-    for (auto&& [k, v] : t)
-      if (std::find_if(keys.begin(), keys.end(), [&](const char* s) { return k.str() == s; }) == keys.end())
-        return failKey(k, v, "unknown key '" + std::string(k.str()) + "' in [[" + what + "]]");
-    return true;
-  };
   const toml::array* arr = nullptr;
   if (!tables("set", arr)) return false;
   if (arr)
     for (const toml::node& n : *arr) {
       const toml::table& t = *n.as_table();
-      if (!checkKeys(t, {"at", "var", "value"}, "set")) return false;
       SetStep s;
       s.where = where(shown, n);
       auto var = t["var"].value_exact<std::string>();
@@ -192,7 +171,6 @@ bool loadScenario(const fs::path& path, const std::string& shown, Scenario& sc, 
   if (arr)
     for (const toml::node& n : *arr) {
       const toml::table& t = *n.as_table();
-      if (!checkKeys(t, {"at", "axis", "kind"}, "fault")) return false;
       FaultStep f;
       f.where = where(shown, n);
       auto axis = t["axis"].value_exact<std::string>();
@@ -206,7 +184,6 @@ bool loadScenario(const fs::path& path, const std::string& shown, Scenario& sc, 
   if (arr)
     for (const toml::node& n : *arr) {
       const toml::table& t = *n.as_table();
-      if (!checkKeys(t, {"at", "var", "equals", "rises_between", "min", "max"}, "check")) return false;
       Check c;
       c.where = where(shown, n);
       auto var = t["var"].value_exact<std::string>();
@@ -276,12 +253,8 @@ std::vector<std::string> splitLines(const std::string& text) {
 }
 
 bool readFile(const fs::path& p, std::string& out) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream s;
-  s << in.rdbuf();
-  out = s.str();
-  return true;
+  std::string why;
+  return config::readRegularFile(p.string(), out, why, uint64_t(1) << 32);
 }
 
 bool numberOf(const std::string& s, double& v) {
@@ -510,7 +483,12 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
         continue;
       }
       cs.expectedText = cs.probe.ref.bit >= 0 ? (cs.expected[0] ? "TRUE" : "FALSE") : vm::formatValue(cs.expected.data(), cs.probe.ref.type, layout);
-      if (cs.probe.isReal) numberOf(cs.expectedText, cs.expectedReal);
+      if (cs.probe.isReal && (!numberOf(cs.expectedText, cs.expectedReal) || !std::isfinite(cs.expectedReal))) {
+        // NaN never equals anything and Inf only itself: such a check could never say anything.
+        report += "  " + c.where + ": error: " + c.var + ": equals " + c.equals + ": a finite number is expected\n";
+        ok = false;
+        continue;
+      }
     } else if (c.kind == Check::Rises && !cs.probe.isBool) {
       report += "  " + c.where + ": error: rises_between needs a BOOL; " + c.var + " is " + cs.probe.type->name + "\n";
       ok = false;
@@ -650,6 +628,13 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
       return false;
     }
     fs::path golden = fs::path(pr.dir) / "expected" / (sc.name + ".csv");
+    std::string why;
+    bool exists = false;
+    if (!config::checkRegularFile(golden.string(), why, true, &exists)) {
+      // A directory, FIFO, device or link loop in its place: never opened (a FIFO would block).
+      report += "  error: expected/" + sc.name + ".csv " + why + "\n";
+      return false;
+    }
     if (pr.update) {
       // Never outside the project: a symbolic link (expected/ itself, or a golden file)
       // leading out of it is refused (vm/FileSandbox.h).
@@ -669,8 +654,11 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
       }
     } else {
       std::string expected;
-      if (!readFile(golden, expected)) {
+      if (!exists) {
         report += "  no expected/" + sc.name + ".csv; run stc test --update\n";
+        pass = false;
+      } else if (!config::readRegularFile(golden.string(), expected, why, uint64_t(1) << 32)) {
+        report += "  error: expected/" + sc.name + ".csv " + why + "\n";
         pass = false;
       } else if (!compareTraces(expected, actual, realColumn, sc.tolerance, report)) {
         pass = false;
@@ -691,11 +679,31 @@ void runProject(ProjectRun& pr) {
   fs::path scenDir = fs::path(pr.dir) / "scenarios";
   std::vector<fs::path> files;
   std::error_code ec;
+  // Every entry named *.toml is a scenario: one that is not a file (a directory, FIFO,
+  // link loop ...) fails with that message rather than being skipped.
+  if (fs::exists(fs::symlink_status(scenDir, ec)) && !fs::is_directory(scenDir, ec)) {
+    std::string why;
+    config::checkRegularFile(scenDir.string(), why);
+    if (why.empty()) why = "is a file";
+    if (why.size() > 12 && why.compare(why.size() - 12, 12, ", not a file") == 0) why.resize(why.size() - 12);
+    pr.out += "FAIL " + pr.label + "\n  scenarios: error: " + why + ", not a directory of scenarios\n";
+    ++pr.failed;
+    return;
+  }
   if (fs::is_directory(scenDir, ec))
     for (const auto& e : fs::directory_iterator(scenDir, ec))
-      if (e.path().extension() == ".toml" && e.is_regular_file(ec)) files.push_back(e.path());
+      if (e.path().extension() == ".toml") files.push_back(e.path());
   std::sort(files.begin(), files.end());
-  if (files.empty()) return;
+  if (files.empty()) {
+    // Nothing to run, but the project file is still checked.
+    ProjectConfig cfg;
+    std::string err;
+    if (!loadProject(pr.dir, cfg, err)) {
+      pr.out += "FAIL " + pr.label + "\n  " + err + "\n";
+      ++pr.failed;
+    }
+    return;
+  }
 
   Compilation comp;
   bool compiled = false;
@@ -758,7 +766,8 @@ int runTest(const TestArgs& args) {
   std::vector<std::string> dirs = args.paths.empty() ? std::vector<std::string>{"."} : args.paths;
   for (const std::string& d : dirs) {
     std::error_code ec;
-    if (!fs::is_directory(d, ec) || !fs::is_regular_file(fs::path(d) / "project.toml", ec)) {
+    // A project.toml that is not a regular file is the child's error (exit 1), with its reason.
+    if (!fs::is_directory(d, ec) || !fs::exists(fs::symlink_status(fs::path(d) / "project.toml", ec))) {
       std::fprintf(stderr, "stc: error: '%s' is not a project directory (no project.toml)\n", d.c_str());
       return 2;
     }

@@ -7,10 +7,13 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <set>
 #include <iostream>
 
 #include "basic/Text.h"
 #include "codegen/CodeGen.h"
+#include "config/ConfigSchema.h"
+#include "config/Duration.h"
 #include "driver/Driver.h"
 #include "import/Import.h"
 #include "sema/Model.h"
@@ -150,7 +153,13 @@ int runExport(const ExportArgs& a) {
 }
 
 // Durations on the command line: T#1s500ms, 1s500ms, 10s, 250ms, 2m, 1h, 5us, 100ns.
-bool parseDuration(const std::string& text, int64_t& out) { return vm::parseIecDuration(text, out); }
+// The grammar is config::parseDuration's, as in project.toml and scenarios.
+bool parseDuration(const char* option, const std::string& text, config::DurationSign sign, int64_t& out) {
+  std::string why;
+  if (config::parseDuration(text, sign, out, &why)) return true;
+  std::cerr << "stc: error: " << option << ": " << why << " (e.g. 10s, 250ms, 1h30m, T#1s500ms)\n";
+  return false;
+}
 
 struct BuildArgs : CheckArgs {
   std::string output;
@@ -178,6 +187,7 @@ struct BuildArgs : CheckArgs {
   bool retainReset = false;
   std::string dataDir;
   bool testlib = false;
+  std::set<std::string> given;   // duration options given on the command line (also as "")
 };
 
 void printDiagnostics(Compilation& c, const CheckArgs& a) {
@@ -207,10 +217,9 @@ std::unique_ptr<codegen::CompiledModule> compile(Compilation& c, const BuildArgs
   o.checkPointers = a.checkPointers && !a.noChecks;
   o.debugInfo = a.debug;
   o.programs = a.programs;
-  if (!a.interval.empty()) {
+  if (!a.interval.empty() || a.given.count("--interval")) {
     int64_t ns = 0;
-    if (!parseDuration(a.interval, ns) || ns <= 0) {
-      std::cerr << "stc: error: --interval: '" << a.interval << "' is not a duration (e.g. 10ms, T#1s)\n";
+    if (!parseDuration("--interval", a.interval, config::DurationSign::Positive, ns)) {
       status = 2;
       return nullptr;
     }
@@ -256,6 +265,15 @@ int runBuild(const BuildArgs& a) {
 }
 
 int runRun(const BuildArgs& a) {
+  if (!a.retain.empty()) {
+    // The retain file is read at start and written at the end: a directory, FIFO (which would
+    // block), device or link loop in its place is refused before anything runs.
+    std::string why;
+    if (!config::checkRegularFile(a.retain, why, true)) {
+      std::cerr << "stc: error: --retain: '" << a.retain << "' " << why << "\n";
+      return 2;
+    }
+  }
   Compilation c;
   int status = 0;
   auto m = compile(c, a, true, status);
@@ -263,13 +281,10 @@ int runRun(const BuildArgs& a) {
   vm::RunOptions ro;
   if (a.cyclesGiven) ro.cycles = a.cycles;
   // Duration options: absent, or a valid duration (else exit 2).
-  auto duration = [](const char* option, const std::string& text, bool positive, std::optional<int64_t>& out) {
-    if (text.empty()) return true;
+  auto duration = [&](const char* option, const std::string& text, bool positive, std::optional<int64_t>& out) {
+    if (text.empty() && !a.given.count(option)) return true;
     int64_t ns = 0;
-    if (!parseDuration(text, ns) || ns < 0 || (positive && ns == 0)) {
-      std::cerr << "stc: error: " << option << ": '" << text << "' is not a duration (e.g. 10s, 250ms, T#1s500ms)\n";
-      return false;
-    }
+    if (!parseDuration(option, text, positive ? config::DurationSign::Positive : config::DurationSign::NonNegative, ns)) return false;
     out = ns;
     return true;
   };
@@ -425,7 +440,13 @@ int main(int argc, char** argv) {
   BuildArgs ra;
   CLI::App* run = app.add_subcommand("run", "Run on the simulated controller and print watched variables");
   addCompileOptions(run, ra);
-  auto* cyc = run->add_option("--cycles", ra.cycles, "Run N cycles of the fastest task");
+  // A count is digits only, at most 10^12 (CLI11 would wrap "-5" into a huge unsigned number).
+  auto* cyc = run->add_option("--cycles", ra.cycles, "Run N cycles of the fastest task (0 .. 10^12)")
+                  ->check([](const std::string& t) -> std::string {
+                    if (t.empty() || t.size() > 13 || t.find_first_not_of("0123456789") != std::string::npos || std::stoull(t) > 1'000'000'000'000ull)
+                      return "'" + t.substr(0, 40) + "' is not a number of cycles from 0 to 10^12";
+                    return "";
+                  });
   run->add_option("--for", ra.forDuration, "Run for a simulated duration (10s, 250ms, T#1s500ms)")->excludes(cyc);
   run->add_option("--interval", ra.interval, "Cycle time of the implicit task (default 1ms)");
   run->add_option("--program", ra.programs, "PROGRAM(s) the implicit task runs (without a CONFIGURATION)")->allow_extra_args(false);
@@ -436,7 +457,8 @@ int main(int argc, char** argv) {
   run->add_flag("--realtime", ra.realtime, "Pace the simulated clock to the wall clock");
   run->add_flag("--stats", ra.stats, "Print per-task statistics");
   run->add_option("--watchdog", ra.watchdog, "Per-task watchdog (simulated time; 0 = off; default 1s)");
-  run->add_option("--slice", ra.slice, "Loop back-edges a task may run per slot before it yields");
+  run->add_option("--slice", ra.slice, "Loop back-edges a task may run per slot before it yields")
+      ->check(CLI::Range(int64_t(1), int64_t(1'000'000'000'000'000)));
   run->add_option("--retain", ra.retain, "Keep RETAIN/PERSISTENT variables in FILE across runs");
   run->add_option("--retain-every", ra.retainEvery, "Also save the retain file every DUR of simulated time");
   run->add_flag("--cold", ra.cold, "Cold start: restore only PERSISTENT variables");
@@ -481,6 +503,8 @@ int main(int argc, char** argv) {
   if (exp->parsed()) return runExport(ea);
   if (pc.cmd->parsed()) return pc.run();
   ra.cyclesGiven = cyc->count() > 0;
+  for (const char* o : {"--for", "--interval", "--watchdog", "--retain-every"})
+    if (run->get_option(o)->count() > 0) ra.given.insert(o);
   if (run->parsed()) return runRun(ra);
   if (test->parsed()) return tools::runTest(ta);
   return 2;
