@@ -38,8 +38,9 @@ bool checkRegularFile(const std::string& path, std::string& why, bool mayBeMissi
     if (e == ELOOP) return why = "is a symbolic link loop", false;
     if (e == ENOENT) {
       struct stat l {};
-      if (::lstat(path.c_str(), &l) == 0 && S_ISLNK(l.st_mode)) return why = "is a dangling symbolic link", false;
+      // A file that may be missing may also be a link to a missing file (it is created through it).
       if (mayBeMissing) return true;
+      if (::lstat(path.c_str(), &l) == 0 && S_ISLNK(l.st_mode)) return why = "is a dangling symbolic link", false;
       return why = "does not exist", false;
     }
     return why = std::string("cannot be read: ") + std::strerror(e), false;

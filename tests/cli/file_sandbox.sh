@@ -83,7 +83,7 @@ timeout 60 "$stc" run "$tmp/p" -w --cycles 20 --data-dir "$tmp/elsewhere" >/dev/
 [ -s "$tmp/elsewhere/ok.log" ] || fail "--data-dir was not used"
 sed -i 's/^data_dir = "files"$/data_dir = 5/' "$tmp/p/project.toml"
 if msg=$(timeout 60 "$stc" run "$tmp/p" -w --cycles 1 2>&1); then fail "data_dir = 5 was accepted"; fi
-grep -q "data_dir must be a directory name" <<<"$msg" || fail "no data_dir message: $msg"
+grep -q "\[project\] data_dir = 5: a string is expected" <<<"$msg" || fail "no data_dir message: $msg"
 
 # stc test --update: a symbolic link expected/ leading out of the project is refused.
 cp -r "$axis_demo" "$tmp/t"

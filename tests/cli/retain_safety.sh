@@ -143,7 +143,7 @@ run 2 b.st --cycles 1 --retain foreign.st --retain-reset       # never, not even
 cmp -s a.st foreign.st || fail "--retain-reset changed a foreign file"
 mkdir adir
 run 2 b.st --cycles 1 --retain adir
-has "'adir' is not a regular file"
+has "'adir' is a directory, not a file"
 if [ "$(id -u)" != 0 ]; then   # (root reads everything)
   cp r.dat locked.dat; chmod 000 locked.dat
   run 2 b.st --cycles 1 --retain locked.dat
