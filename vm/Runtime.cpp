@@ -301,7 +301,8 @@ int64_t __stc_str_to_int(const char* s) {
     if (d < 0 || d >= base) break;
     v = v * static_cast<uint64_t>(base) + static_cast<uint64_t>(d);
   }
-  return neg ? -static_cast<int64_t>(v) : static_cast<int64_t>(v);
+  // Negated as unsigned (C++20: modular conversion): '-9223372036854775808' is LINT's minimum.
+  return static_cast<int64_t>(neg ? 0 - v : v);
 }
 double __stc_str_to_real(const char* s) { return std::strtod(s, nullptr); }
 int32_t __stc_str_is_true(const char* s) {
