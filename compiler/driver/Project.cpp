@@ -7,6 +7,7 @@
 #include "config/Duration.h"
 #include "driver/Driver.h"
 #include "import/Import.h"
+#include "parse/Parser.h"
 
 namespace fs = std::filesystem;
 
@@ -65,9 +66,21 @@ bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error)
     out.tasksWhere = config::where(manifest.string(), *tasks->get(0));
     std::string text = "CONFIGURATION __project\n  RESOURCE __cpu ON PLC\n";
     std::string programs;
+    // A keyword is an ST name to the schema but not to the parser: refused here,
+    // at its place in project.toml, instead of as a syntax error in the generated text.
+    auto reserved = [&](const toml::node& v, const char* what) {
+      const std::string s = *v.value<std::string>();
+      if (!isReservedWord(s)) return false;
+      error = at(v) + "[[task]] " + what + " = \"" + s + "\": '" + s + "' is an ST keyword and cannot name a " +
+              (std::string(what) == "name" ? "task" : "program");
+      return true;
+    };
     for (const toml::node& n : *tasks) {
       const toml::table& t = *n.as_table();
       const std::string name = *t["name"].value<std::string>();
+      if (reserved(*t["name"].node(), "name")) return false;
+      for (const toml::node& p : *t["programs"].as_array())
+        if (reserved(p, "programs")) return false;
       std::string kind;
       if (auto iv = t["interval"].value<std::string>()) {
         int64_t ns = 0;

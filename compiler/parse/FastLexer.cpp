@@ -2,11 +2,13 @@
 // (same types, same boundaries), several times faster than the generated
 // ANTLR lexer.  STLexer.g4 stays the definition of the token vocabulary; the
 // unit test LexerDifferential compares the two on every corpus file.
+#include <cctype>
 #include <cstring>
 #include <unordered_map>
 
 #include "basic/Text.h"
 #include "parse/ParseInternal.h"
+#include "parse/Parser.h"
 
 namespace stc::parse {
 
@@ -20,7 +22,11 @@ bool isIdentChar(char c) { return isIdentStart(c) || isDigit(c); }
 const std::unordered_map<std::string, size_t>& keywords(antlr4::TokenSource* lexer = nullptr) {
   static const std::unordered_map<std::string, size_t> kw = [lexer] {
     std::unordered_map<std::string, size_t> m;
-    const antlr4::dfa::Vocabulary& v = static_cast<STLexer*>(lexer)->getVocabulary();
+    // The vocabulary is static data of the generated lexer; without a lexer at
+    // hand (a name checked before any file is lexed) a throwaway one reads it.
+    antlr4::ANTLRInputStream none("");
+    std::unique_ptr<STLexer> own = lexer ? nullptr : std::make_unique<STLexer>(&none);
+    const antlr4::dfa::Vocabulary& v = (lexer ? static_cast<STLexer*>(lexer) : own.get())->getVocabulary();
     // Keyword tokens are the leading run of the vocabulary up to XOR.
     for (size_t t = 1; t <= STLexer::XOR; ++t) m.emplace(v.getSymbolicName(t), t);
     // Spellings of CoDeSys 2.3 exports (the same tokens in STLexer.g4).
@@ -32,6 +38,16 @@ const std::unordered_map<std::string, size_t>& keywords(antlr4::TokenSource* lex
 }
 
 }  // namespace
+
+}  // namespace stc::parse
+
+bool stc::isReservedWord(const std::string& name) {
+  std::string upper = name;
+  for (char& ch : upper) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  return parse::keywords().count(upper) != 0;
+}
+
+namespace stc::parse {
 
 size_t keywordTokenTypeOf(const std::string& upper) {
   auto it = keywords().find(upper);

@@ -25,6 +25,10 @@ struct ParseStats {
 bool parseFile(SourceManager& sm, uint32_t file, DiagnosticsEngine& diags, ast::ASTContext& ctx,
                const ParseOptions& opts, ParseStats* stats = nullptr);
 
+// True if `name` (any case) is a keyword of the ST grammar and so cannot name a
+// task, program or variable (used to check names that reach generated ST).
+bool isReservedWord(const std::string& name);
+
 // Lexes `text` with the generated ANTLR lexer and with the hand-written one;
 // returns "" if they agree, else the first difference (for tests).
 std::string compareLexers(const std::string& text);

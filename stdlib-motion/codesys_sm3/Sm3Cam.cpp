@@ -199,13 +199,13 @@ void MC_CamIn(sm3::MC_CamIn* self) {
     in.slaveOffset = self->SlaveOffset;
     in.masterScaling = self->MasterScaling;
     in.slaveScaling = self->SlaveScaling;
-    in.startMode = static_cast<CamStartMode>(self->StartMode);
+    in.startMode = enumOf<CamStartMode>(self->StartMode, 4);
     in.velocityDiff = self->VelocityDiff;
     in.acceleration = self->Acceleration;
     in.deceleration = self->Deceleration;
     in.jerk = self->Jerk;
     in.tappetHysteresis = self->TappetHysteresis;
-    in.bufferMode = static_cast<BufferMode>(self->BufferMode);
+    in.bufferMode = bufferModeOf(self->BufferMode);
     in.publishTappets = &publishTappets;
   }
   callCamIn(kernel(), fb, *master, *slave, self->Execute, in, c);

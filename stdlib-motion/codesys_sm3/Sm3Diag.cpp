@@ -349,7 +349,7 @@ void MC_DigitalCamSwitch(sm3::MC_DigitalCamSwitch* self) {
   }
   diag::CamSwitchOut o = diag::callDigitalCamSwitch(kernel(), s, *ax, self->Enable, rising ? &switches : nullptr, options,
                                                     outs ? outs->Track : nullptr, self->EnableMask,
-                                                    static_cast<diag::TappetMode>(self->TappetMode), c);
+                                                    enumOf<diag::TappetMode>(self->TappetMode, 2), c);
   if (o.error && rising) {
     s.axis = ax;
     kernel().noteFbError(s, o.errorId, c.nowNs);

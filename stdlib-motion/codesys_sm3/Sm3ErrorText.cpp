@@ -119,6 +119,8 @@ constexpr uint16_t kSmcNumbers[] = {
     2101,    // AdlBufferOverrun: SMC_ADL_BUFFER_OVERRUN
     0x7001,  // BlendingNotSupportedByPrevious: see docs/motion.md ("Buffer modes")
     0x7002,  // BufferFull: more buffered commands than the queue holds
+    0x7003,  // InvalidBufferMode: BufferMode not one of MC_BUFFER_MODE's six values
+    0x7004,  // InvalidTappetMode: TappetMode not 0..2
 };
 static_assert(sizeof(kSmcNumbers) / sizeof(kSmcNumbers[0]) == static_cast<size_t>(Error::Count_), "one SMC_ERROR per core fault");
 
@@ -342,6 +344,8 @@ const ErrorText kErrors[] = {
   {5002, "SMC_ENC_FILTER_DEPTH_INVALID", "invalid filter depth"},
   {28673, "SMC_BLENDING_NOT_SUPPORTED_BY_PREVIOUS_MOVEMENT", "the previous movement does not support blending (stc: blending after a continuous move or MC_Halt)"},
   {28674, "SMC_BUFFER_FULL", "more buffered commands than the axis queue holds (stc: 16)"},
+  {28675, "SMC_INVALID_BUFFER_MODE", "BufferMode is not one of Aborting, Buffered, BlendingLow, BlendingPrevious, BlendingNext, BlendingHigh (stc)"},
+  {28676, "SMC_INVALID_TAPPET_MODE", "TappetMode is not one of tp_mode_auto, tp_mode_demandposition, tp_mode_actualposition (stc)"},
 };
 
 const ErrorText* find(uint16_t id) {

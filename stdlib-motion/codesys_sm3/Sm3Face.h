@@ -99,12 +99,12 @@ inline MoveInputs moveInputs(const T* s) {
   in.jerk = s->Jerk;
   if constexpr (requires { s->Position; }) in.position = s->Position;
   if constexpr (requires { s->Distance; }) in.distance = s->Distance;
-  if constexpr (requires { s->Direction; }) in.direction = static_cast<Direction>(s->Direction);
+  if constexpr (requires { s->Direction; }) in.direction = directionOf(s->Direction);
   if constexpr (requires { s->EndVelocity; }) {
     in.endVelocity = s->EndVelocity;
-    in.endDirection = static_cast<Direction>(s->EndVelocityDirection);
+    in.endDirection = directionOf(s->EndVelocityDirection);
   }
-  if constexpr (requires { s->BufferMode; }) in.bufferMode = static_cast<BufferMode>(s->BufferMode);
+  if constexpr (requires { s->BufferMode; }) in.bufferMode = bufferModeOf(s->BufferMode);
   return in;
 }
 

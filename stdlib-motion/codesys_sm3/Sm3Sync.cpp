@@ -28,7 +28,7 @@ void MC_GearIn(sm3::MC_GearIn* self) {
     in.acceleration = self->Acceleration;
     in.deceleration = self->Deceleration;
     in.jerk = self->Jerk;
-    in.bufferMode = static_cast<BufferMode>(self->BufferMode);
+    in.bufferMode = bufferModeOf(self->BufferMode);
     callGearIn(k, slotOf(self, FbKind::GearIn), m, s, self->Execute, in, c);
   });
 }
@@ -42,7 +42,7 @@ void MC_GearInPos(sm3::MC_GearInPos* self) {
     in.slaveSyncPosition = self->SlaveSyncPosition;
     in.masterStartDistance = self->MasterStartDistance;
     in.avoidReversal = self->AvoidReversal;
-    in.bufferMode = static_cast<BufferMode>(self->BufferMode);
+    in.bufferMode = bufferModeOf(self->BufferMode);
     callGearInPos(k, slotOf(self, FbKind::GearInPos), m, s, self->Execute, in, c);
   });
 }
@@ -70,8 +70,8 @@ void SMC_BacklashCompensation(sm3::SMC_BacklashCompensation* self) {
     in.acceleration = self->fCompensationAcc;
     in.deceleration = self->fCompensationDec;
     in.jerk = self->fCompensationJerk;
-    in.mode = static_cast<BacklashMode>(self->eBacklashMode);
-    in.start = static_cast<BacklashStart>(self->eBacklashStartState);
+    in.mode = enumOf<BacklashMode>(self->eBacklashMode, 3);
+    in.start = enumOf<BacklashStart>(self->eBacklashStartState, 2);
     callBacklash(k, slotOf(self, FbKind::Backlash), m, s, self->bExecute, in, c);
   });
 }

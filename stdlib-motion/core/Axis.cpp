@@ -1,4 +1,5 @@
 #include "stdlib-motion/core/Axis.h"
+#include "stdlib-motion/core/InputBounds.h"
 
 #include <algorithm>
 #include <cmath>
@@ -77,6 +78,10 @@ Limits Axis::limitsFor(double vel, double acc, double dec, double jerk) const {
   return l;
 }
 
+bool Axis::acceptsJerk(double jerk) const {
+  return bounds::jerk(jerk) && (cfg_.ramp == RampType::Trapez || cfg_.ramp == RampType::SinSquare || jerk > 0);
+}
+
 bool Axis::absoluteTarget(double position, Direction dir, double& target) const {
   const int d = static_cast<int>(dir);
   if (d < -1 || d > 3) return false;
@@ -105,6 +110,7 @@ bool Axis::absoluteTarget(double position, Direction dir, double& target) const 
       target = a.duration() <= b.duration() ? up : down;
       break;
     }
+    case Direction::Invalid: return false;   // refused above; kept for -Wswitch
   }
   return true;
 }

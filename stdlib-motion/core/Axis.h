@@ -24,11 +24,21 @@ enum class AxisState : uint8_t {
   DiscreteMotion = 4, ContinuousMotion = 5, SynchronizedMotion = 6, Homing = 7,
 };
 
-// MC_DIRECTION values.
-enum class Direction : int8_t { Negative = -1, Shortest = 0, Positive = 1, Current = 2, Fastest = 3 };
+// MC_DIRECTION values; Invalid stands for any other number a program passed.
+enum class Direction : int8_t { Negative = -1, Shortest = 0, Positive = 1, Current = 2, Fastest = 3, Invalid = 127 };
 
-// MC_BUFFER_MODE values.
-enum class BufferMode : uint8_t { Aborting = 0, Buffered = 1, BlendingLow = 2, BlendingPrevious = 3, BlendingNext = 4, BlendingHigh = 5 };
+// MC_BUFFER_MODE values; Invalid stands for any other number (SMC_INVALID_BUFFER_MODE).
+enum class BufferMode : uint8_t { Aborting = 0, Buffered = 1, BlendingLow = 2, BlendingPrevious = 3, BlendingNext = 4, BlendingHigh = 5, Invalid = 255 };
+
+// From the ST enum values (16- or 32-bit) to the core's: a plain cast to the
+// 8-bit enums would wrap 257 to 1, so everything out of range becomes Invalid.
+constexpr Direction directionOf(int64_t v) { return v >= -1 && v <= 3 ? static_cast<Direction>(v) : Direction::Invalid; }
+constexpr BufferMode bufferModeOf(int64_t v) { return v >= 0 && v <= 5 ? static_cast<BufferMode>(v) : BufferMode::Invalid; }
+// The same for the other 8-bit enums numbered 0..last: out of range becomes 255,
+// which every validation refuses.
+template <class E>
+constexpr E enumOf(int64_t v, int64_t last) { return v >= 0 && v <= last ? static_cast<E>(v) : static_cast<E>(255); }
+constexpr bool validBufferMode(BufferMode m) { return static_cast<int>(m) <= 5; }
 
 // SMC_RAMPTYPE values: trapez ignores Jerk; the quadratic ramps use it.
 enum class RampType : uint8_t { Trapez = 0, SinSquare = 1, Quadratic = 2, QuadraticSmooth = 3 };
@@ -170,6 +180,9 @@ public:
   // Limits of a command: jerk only with the quadratic ramp types; sin² ramps are planned
   // jerk-limited with jerk = max(acc, dec)^2 / vel (docs/motion-config.md).
   Limits limitsFor(double vel, double acc, double dec, double jerk) const;
+  // A command's Jerk input is valid for this axis: finite, within the bounds, and > 0 where the
+  // ramp type plans with it (quadratic ramps; trapez and sin² ignore it, so 0 is allowed there).
+  bool acceptsJerk(double jerk) const;
   // The unwrapped target of an absolute move (modulo direction rules).  False: invalid direction.
   bool absoluteTarget(double position, Direction dir, double& target) const;
 

@@ -152,7 +152,8 @@ CamSwitchOut callDigitalCamSwitch(Kernel& k, FbSlot& fb, Axis& ax, bool enable, 
     cs.enabled = false;
     cs.error = Error::None;
     stopObserving(ax, fb);
-    if (!switches || switches->empty()) cs.error = Error::CrNoTappetsInCam;
+    if (static_cast<int>(tappet) > 2) cs.error = Error::InvalidTappetMode;
+    else if (!switches || switches->empty()) cs.error = Error::CrNoTappetsInCam;
     else if (Error e = validate(*switches, options, ax); e != Error::None) cs.error = e;
     else {
       cs.switches = *switches;

@@ -64,6 +64,8 @@ FaultClass faultClass(Error e) {
     case Error::BcBacklashTooBig:
     case Error::SrtInvalidRampType:
     case Error::SmtInvalidMovementTypeOrPositionPeriod:
+    case Error::InvalidBufferMode:
+    case Error::InvalidTappetMode:
       return FaultClass::InvalidParameter;
     case Error::RegulatorOrStartNotSet:
     case Error::WrongControllerMode:

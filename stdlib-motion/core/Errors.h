@@ -123,6 +123,8 @@ enum class Error : uint16_t {
   AdlBufferOverrun,
   BlendingNotSupportedByPrevious,
   BufferFull,
+  InvalidBufferMode,
+  InvalidTappetMode,
   Count_,   // the number of faults (not a fault)
 };
 

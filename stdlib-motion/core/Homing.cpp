@@ -596,7 +596,7 @@ void callSmcHoming(Kernel& k, FbSlot& fb, Axis& ax, bool execute, const SmcHomin
   }
   fb.axis = &ax;
   b.latching = false;
-  const bool jerkOk = std::isfinite(in.jerk) && in.jerk >= 0 && (ax.config().ramp == RampType::Trapez || in.jerk > 0);
+  const bool jerkOk = ax.acceptsJerk(in.jerk);
   const bool modeOk = in.mode == 0 || in.mode == 1 || in.mode == 2 || in.mode == 4 || in.mode == 5 || in.mode == 6;
   if (!finitePositive(in.velocityFast) || !finitePositive(in.velocitySlow) || !finitePositive(in.acceleration) ||
       !finitePositive(in.deceleration) || !jerkOk || !std::isfinite(in.homePosition) || !std::isfinite(in.signalDelay) ||
@@ -791,7 +791,7 @@ void callSmcHome(Kernel& k, FbSlot& fb, Axis& ax, bool execute, const SmcHomeInp
     return;
   }
   fb.axis = &ax;
-  const bool jerkOk = std::isfinite(in.jerk) && in.jerk >= 0 && (ax.config().ramp == RampType::Trapez || in.jerk > 0);
+  const bool jerkOk = ax.acceptsJerk(in.jerk);
   std::vector<SmcHomeFb::Step> program;
   bool latch = false;
   if (!finitePositive(in.velocityFast) || !finitePositive(in.velocitySlow) || !finitePositive(in.acceleration) ||

@@ -100,10 +100,11 @@ bool validDirection(Direction d) { int v = static_cast<int>(d); return v >= -1 &
 // Bad inputs of a move, in the order the checks are made.
 Error validateMove(FbKind k, const MoveInputs& in, const Axis& ax) {
   const MoveCodes codes = codesOf(k);
-  const bool jerkOk = bounds::jerk(in.jerk) && (ax.config().ramp == RampType::Trapez || ax.config().ramp == RampType::SinSquare || in.jerk > 0);
+  const bool jerkOk = ax.acceptsJerk(in.jerk);
   const bool velOk = k == FbKind::MoveVelocity ? bounds::signedVelocity(in.velocity) : bounds::velocity(in.velocity);
   if (!velOk || !finitePositive(in.acceleration) || !finitePositive(in.deceleration) || !jerkOk) return codes.velAcc;
   if (!bounds::position(in.position) || !bounds::position(in.distance)) return codes.velAcc;
+  if (!validBufferMode(in.bufferMode)) return Error::InvalidBufferMode;
   switch (k) {
     case FbKind::MoveAbsolute:
       if (!validDirection(in.direction)) return codes.direction;
@@ -322,6 +323,10 @@ void Kernel::startCommand(FbSlot& fb, Axis& ax, int64_t nowNs, double frac) {
 // modes queue it behind the running one.
 void Kernel::accept(FbSlot& fb, Axis& ax, const CallCtx& c) {
   fb.axis = &ax;
+  if (!validBufferMode(fb.in.bufferMode)) {   // a number outside MC_BUFFER_MODE: refused, never run as another mode
+    fail(fb, Error::InvalidBufferMode, c);
+    return;
+  }
   const bool idle = !ax.controller && ax.queue.empty();
   if (fb.in.bufferMode == BufferMode::Aborting || idle || ax.controller == &fb) {
     if (ax.controller && ax.controller != &fb) {
@@ -483,7 +488,7 @@ void Kernel::callHalt(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, 
     return;
   }
   fb.axis = &ax;
-  if (!finitePositive(in.deceleration) || !bounds::jerk(in.jerk)) return fail(fb, Error::StopInvalidAccDec, c);
+  if (!finitePositive(in.deceleration) || !ax.acceptsJerk(in.jerk)) return fail(fb, Error::StopInvalidAccDec, c);
   if (Error e = motionStateError(ax); e != Error::None) return fail(fb, e, c);
   fb.in = in;
   fb.in.velocity = std::max(std::fabs(ax.set().v), 1e-9);
@@ -506,7 +511,7 @@ void Kernel::callStop(FbSlot& fb, Axis& ax, bool execute, const MoveInputs& in, 
   fb.axis = &ax;
   if (ax.state() == AxisState::ErrorStop) return fail(fb, Error::StopAxisInErrorStop, c);
   if (ax.blockingStop && ax.blockingStop != &fb) return fail(fb, Error::BlockingStopWasntCalled, c);
-  if (!finitePositive(in.deceleration) || !bounds::jerk(in.jerk)) return fail(fb, Error::StopInvalidAccDec, c);
+  if (!finitePositive(in.deceleration) || !ax.acceptsJerk(in.jerk)) return fail(fb, Error::StopInvalidAccDec, c);
   if (ax.state() == AxisState::PowerOff) return fail(fb, Error::RegulatorOrStartNotSet, c);
   if (ax.drive().modeOfOperation() == 10) return fail(fb, Error::WrongControllerMode, c);   // torque control
   fb.in = in;
@@ -538,7 +543,7 @@ void Kernel::callJog(FbSlot& fb, Axis& ax, bool forward, bool backward, const Mo
   if (want != 0 && fb.levelDir != want && !fb.out.error) {
     fb.out.aborted = false;
     MoveInputs i = in;
-    if (!bounds::velocity(in.velocity) || !finitePositive(in.acceleration) || !finitePositive(in.deceleration) || !bounds::jerk(in.jerk)) {
+    if (!bounds::velocity(in.velocity) || !finitePositive(in.acceleration) || !finitePositive(in.deceleration) || !ax.acceptsJerk(in.jerk)) {
       fb.levelDir = want;
       return fail(fb, Error::MvInvalidAccDec, c);
     }
@@ -595,7 +600,7 @@ void Kernel::callInch(FbSlot& fb, Axis& ax, bool forward, bool backward, const M
     fb.out.done = fb.out.error = fb.out.aborted = false;
     fb.out.errorId = Error::None;
     if (!bounds::velocity(in.velocity) || !finitePositive(in.acceleration) || !finitePositive(in.deceleration) ||
-        !bounds::jerk(in.jerk) || !bounds::position(in.distance))
+        !ax.acceptsJerk(in.jerk) || !bounds::position(in.distance))
       return fail(fb, Error::MrInvalidVelAcc, c);
     if (Error e = motionStateError(ax); e != Error::None) return fail(fb, e, c);
     fb.in = in;

@@ -22,7 +22,7 @@ ls::StartVelInputs startVelInputs(const T* s) {
   if constexpr (requires { s->Distance; }) in.distance = s->Distance;
   if constexpr (requires { s->EndSecondVel; }) in.endSecondVel = s->EndSecondVel;
   if constexpr (requires { s->Deceleration; }) in.deceleration = s->Deceleration;
-  if constexpr (requires { s->Direction; }) in.direction = static_cast<Direction>(s->Direction);
+  if constexpr (requires { s->Direction; }) in.direction = directionOf(s->Direction);
   in.velocity = s->Velocity;
   in.acceleration = s->Acceleration;
   in.startVel = s->StartVel;

@@ -177,6 +177,16 @@ name = "Fast(INTERVAL := T#1ms); TASK Evil"
 interval = "1ms"
 programs = ["MAIN"]'
   expect name-injection 1 "\[\[task\]\] name = .*an ST name is expected" -- "$STC" check "$TMP/inject4"
+  project keyword <<<'[[task]]
+name = "END_IF"
+interval = "1ms"
+programs = ["MAIN"]'
+  expect task-keyword 1 "project.toml:2:8: error: \[\[task\]\] name = \"END_IF\": 'END_IF' is an ST keyword and cannot name a task" -- "$STC" check "$TMP/keyword"
+  project keyword2 <<<'[[task]]
+name = "Fast"
+interval = "1ms"
+programs = ["while"]'
+  expect program-keyword 1 "project.toml:4:13: error: \[\[task\]\] programs = \"while\": 'while' is an ST keyword" -- "$STC" check "$TMP/keyword2"
   project prio <<<'[[task]]
 name = "Fast"
 interval = "1ms"
