@@ -128,6 +128,8 @@ public:
     uint32_t task = UINT32_MAX;
   };
   std::vector<AxisVar> axisVars;
+  // The axis group variable each kernel group is bound to, by group index.
+  std::vector<const void*> groupVars;
   void bindVar(Axis& ax, void* var, void (*mirror)(const Axis&, void*));
   // The axis bound to `var` under the binding `index` when the calling task owns it, else null.
   Axis* boundAxis(uint64_t index, const void* var, uint32_t task) const {

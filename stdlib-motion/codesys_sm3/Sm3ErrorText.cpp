@@ -121,6 +121,17 @@ constexpr uint16_t kSmcNumbers[] = {
     0x7002,  // BufferFull: more buffered commands than the queue holds
     0x7003,  // InvalidBufferMode: BufferMode not one of MC_BUFFER_MODE's six values
     0x7004,  // InvalidTappetMode: TappetMode not 0..2
+    0x7100,  // AgNotDisabled: SMC_AG_NOT_DISABLED
+    0x7101,  // AgAxisAlreadyInGroup: SMC_AG_AXIS_ALREADY_IN_GROUP
+    0x7102,  // AgAxisNotInGroup: SMC_AG_AXIS_NOT_IN_GROUP
+    0x7103,  // AgTooManyAxes: SMC_AG_TOO_MANY_AXES
+    0x7104,  // AgNoAxes: SMC_AG_NO_AXES
+    0x7105,  // AgAxisNotServo: SMC_AG_AXIS_NOT_SERVO
+    0x7106,  // AgAxisNotReady: SMC_AG_AXIS_NOT_READY
+    0x7107,  // AgAxisInOtherGroup: SMC_AG_AXIS_IN_OTHER_GROUP
+    0x7108,  // AgNotEnabled: SMC_AG_NOT_ENABLED
+    0x7109,  // AgStillDecelerating: SMC_AG_STILL_DECELERATING
+    0x710A,  // AgAxisError: SMC_AG_AXIS_ERROR
 };
 static_assert(sizeof(kSmcNumbers) / sizeof(kSmcNumbers[0]) == static_cast<size_t>(Error::Count_), "one SMC_ERROR per core fault");
 
@@ -346,6 +357,17 @@ const ErrorText kErrors[] = {
   {28674, "SMC_BUFFER_FULL", "more buffered commands than the axis queue holds (stc: 16)"},
   {28675, "SMC_INVALID_BUFFER_MODE", "BufferMode is not one of Aborting, Buffered, BlendingLow, BlendingPrevious, BlendingNext, BlendingHigh (stc)"},
   {28676, "SMC_INVALID_TAPPET_MODE", "TappetMode is not one of tp_mode_auto, tp_mode_demandposition, tp_mode_actualposition (stc)"},
+  {28928, "SMC_AG_NOT_DISABLED", "the axis group is enabled: axes can be added or removed only in GroupDisabled (stc)"},
+  {28929, "SMC_AG_AXIS_ALREADY_IN_GROUP", "the axis is already a member of this axis group (stc)"},
+  {28930, "SMC_AG_AXIS_NOT_IN_GROUP", "the axis is not a member of this axis group (stc)"},
+  {28931, "SMC_AG_TOO_MANY_AXES", "an axis group has at most SMC_RCNST.MAX_AXES (9) axes (stc)"},
+  {28932, "SMC_AG_NO_AXES", "the axis group has no axes (stc)"},
+  {28933, "SMC_AG_AXIS_NOT_SERVO", "only servo and virtual axes can be members of an enabled axis group (stc)"},
+  {28934, "SMC_AG_AXIS_NOT_READY", "a member axis is not powered or not at standstill (stc)"},
+  {28935, "SMC_AG_AXIS_IN_OTHER_GROUP", "a member axis belongs to another enabled axis group (stc)"},
+  {28936, "SMC_AG_NOT_ENABLED", "the axis group is disabled (MC_GroupEnable first) (stc)"},
+  {28937, "SMC_AG_STILL_DECELERATING", "the member axes are still braking from the error (stc)"},
+  {28938, "SMC_AG_AXIS_ERROR", "a member axis is in ErrorStop (its error: MC_GroupReadError.ErrorID) (stc)"},
 };
 
 const ErrorText* find(uint16_t id) {

@@ -65,8 +65,8 @@ inline void publish(void* instance, const FbOutputs& o) {
   if constexpr (requires { s->nErrorID; }) id(s->nErrorID);
   if constexpr (requires { s->iErrorID; }) id(s->iErrorID);
   if constexpr (requires { s->eErrorID; }) id(s->eErrorID);
-  if constexpr (requires { s->Status; }) {
-    s->Status = o.status;
+  if constexpr (requires { s->Status; }) s->Status = o.status;
+  if constexpr (requires { s->bRegulatorRealState; }) {
     s->bRegulatorRealState = o.regulatorRealState;
     s->bDriveStartRealState = o.driveStartRealState;
   }
@@ -74,8 +74,8 @@ inline void publish(void* instance, const FbOutputs& o) {
 
 // An FB whose axis is owned by another task (or missing) reports 34.
 template <class T>
-inline bool refuse(T* self, Axis* ax) {
-  if (ax) return false;
+inline bool refuse(T* self, const void* axisOrGroup) {
+  if (axisOrGroup) return false;
   FbOutputs o;
   o.error = true;
   o.errorId = Error::NotReadyForMotion;
@@ -180,6 +180,7 @@ void axisFbSlot(T* self, FbKind kind, F call) {
 
 namespace stc::motion {
 // Per-family registration, called at the start of registerSm3Natives().
+void registerSm3GroupNatives(MotionLibrary& lib);   // Sm3Group.cpp: axis groups
 void registerSm3ProfilesNatives(MotionLibrary& lib);
 void registerSm3SyncNatives(MotionLibrary& lib);   // Sm3Sync.cpp: gear, phasing, backlash
 void registerSm3CamNatives(MotionLibrary& lib);    // Sm3Cam.cpp: cams, tappets, cam files

@@ -66,6 +66,11 @@ FaultClass faultClass(Error e) {
     case Error::SmtInvalidMovementTypeOrPositionPeriod:
     case Error::InvalidBufferMode:
     case Error::InvalidTappetMode:
+    case Error::AgAxisAlreadyInGroup:
+    case Error::AgAxisNotInGroup:
+    case Error::AgTooManyAxes:
+    case Error::AgNoAxes:
+    case Error::AgAxisNotServo:
       return FaultClass::InvalidParameter;
     case Error::RegulatorOrStartNotSet:
     case Error::WrongControllerMode:
@@ -92,6 +97,11 @@ FaultClass faultClass(Error e) {
     case Error::SmtNotStandstillOrPoweroff:
     case Error::SmtAxisNotVirtual:
     case Error::BlendingNotSupportedByPrevious:
+    case Error::AgNotDisabled:
+    case Error::AgAxisNotReady:
+    case Error::AgAxisInOtherGroup:
+    case Error::AgNotEnabled:
+    case Error::AgStillDecelerating:
       return FaultClass::WrongState;
     case Error::BufferFull:
       return FaultClass::QueueFull;
@@ -104,6 +114,7 @@ FaultClass faultClass(Error e) {
     case Error::VdMaxVelocityExceeded:
     case Error::VdMaxAccelerationExceeded:
     case Error::VdMaxDecelerationExceeded:
+    case Error::AgAxisError:
       return FaultClass::AxisFault;
     case Error::Communication:
     case Error::ResetDriveDoesntAnswer:

@@ -125,6 +125,18 @@ enum class Error : uint16_t {
   BufferFull,
   InvalidBufferMode,
   InvalidTappetMode,
+  // Axis groups (stc's numbers, docs/motion-groups.md "Errors").
+  AgNotDisabled,          // add / remove / ungroup on an enabled group
+  AgAxisAlreadyInGroup,
+  AgAxisNotInGroup,
+  AgTooManyAxes,
+  AgNoAxes,               // enable a group without axes
+  AgAxisNotServo,         // enable: a member that is not a servo or virtual axis
+  AgAxisNotReady,         // enable: a member not powered or not at standstill
+  AgAxisInOtherGroup,     // enable: a member of another enabled group
+  AgNotEnabled,
+  AgStillDecelerating,    // reset while the members still brake from the error
+  AgAxisError,            // GroupErrorID when a member axis went to ErrorStop
   Count_,   // the number of faults (not a fault)
 };
 

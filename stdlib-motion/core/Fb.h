@@ -20,6 +20,8 @@ enum class FbKind : uint8_t {
   Profile, Follow, Torque, Probe, CamSwitch, Parameter, Config, Diagnostic, Leadshine, Other,
   // Couplings (Coupling.h): the slave follows a master.
   GearIn, GearInPos, CamIn, Phasing, Backlash,
+  // Axis-group instructions (stdlib-motion/group).
+  Group,
 };
 
 struct FbOutputs {

@@ -22,11 +22,18 @@ bool VendorProfile::named(std::string_view name, VendorProfile& out) {
 }
 
 void Kernel::reset() {
+  groups_.clear();   // first: groups point to axes
+  encoders_.clear();
   axes_.clear();
   slots_.clear();
   stepNowNs_ = 0;
   callCounter = 0;
   profile = VendorProfile{};
+}
+
+AxisGroup& Kernel::addGroup() {
+  groups_.push_back(std::make_unique<AxisGroup>(static_cast<uint32_t>(groups_.size())));
+  return *groups_.back();
 }
 
 Axis& Kernel::addAxis(const AxisConfig& cfg) {
@@ -651,6 +658,8 @@ void Kernel::cycle(uint32_t task, int64_t nowNs, int64_t intervalNs, uint64_t cy
     }
     for (size_t i = chain_.size(); i-- > 0;) stepAxis(*chain_[i], nowNs, dt, cycle);
   }
+  for (auto& g : groups_)
+    if (g->task == task) stepGroup(*this, *g, cycle);
 }
 
 void Kernel::errorStop(Axis& ax, Error e, int64_t nowNs, uint64_t cycle) {

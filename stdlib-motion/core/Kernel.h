@@ -14,6 +14,7 @@
 
 #include "stdlib-motion/core/Axis.h"
 #include "stdlib-motion/core/Fb.h"
+#include "stdlib-motion/group/AxisGroup.h"
 
 namespace stc::motion {
 
@@ -51,6 +52,12 @@ public:
     if (axis.task == UINT32_MAX) axis.task = c.task;
     return axis.task == c.task;
   }
+
+  // ---- axis groups (stdlib-motion/group/AxisGroup.h), stepped after their member axes
+  AxisGroup& addGroup();
+  AxisGroup* group(uint32_t index) { return index < groups_.size() ? groups_[index].get() : nullptr; }
+  const AxisGroup* group(uint32_t index) const { return index < groups_.size() ? groups_[index].get() : nullptr; }
+  size_t groupCount() const { return groups_.size(); }
 
   // ---- FB slots: `handle` lives in the ST instance (0 = none yet).
   FbSlot& slot(uint64_t& handle, void* instance, FbKind kind, PublishFn publish) {   // inline fast path: a known instance
@@ -117,6 +124,7 @@ private:
   int64_t stepNowNs_ = 0;
   std::vector<std::unique_ptr<Axis>> axes_;
   std::vector<std::unique_ptr<FbSlot>> slots_;
+  std::vector<std::unique_ptr<AxisGroup>> groups_;
   std::vector<uint8_t> stepped_;   // cycle(): axes already stepped
   std::vector<Axis*> encoders_;    // encoder axes (their kind is fixed at addAxis), stepped first
   std::vector<Axis*> chain_;       // cycle(): an axis and its not yet stepped masters

@@ -1,0 +1,153 @@
+// The axis-group blocks of the CODESYS SoftMotion face (sm3_group.st): binding
+// an AXIS_GROUP_REF_SM3 to its kernel group, the administration FBs and the
+// group readers.  The semantics live in stdlib-motion/group.
+#include "stdlib-motion/codesys_sm3/Sm3Face.h"
+
+using namespace stc::motion;
+using namespace stc::motion::sm3face;
+
+namespace {
+
+// The group behind an AXIS_GROUP_REF_SM3, bound on first use to the calling task;
+// null when another task owns it (every FB of a group runs in one task).
+AxisGroup* bindGroup(sm3::AXIS_GROUP_REF_SM3* ref, const CallCtx& c) {
+  if (!ref) return nullptr;
+  MotionSession& s = MotionSession::current();
+  Kernel& k = s.kernel;
+  AxisGroup* g = k.group(ref->__stcGroup - 1u);
+  // The binding is only trusted when the group is bound to this very variable.
+  if (!g || g->index() >= s.groupVars.size() || s.groupVars[g->index()] != ref) {
+    g = &k.addGroup();
+    if (s.groupVars.size() <= g->index()) s.groupVars.resize(g->index() + 1);
+    s.groupVars[g->index()] = ref;
+    ref->__stcGroup = g->index() + 1;
+  }
+  if (g->task == UINT32_MAX) g->task = c.task;
+  return g->task == c.task ? g : nullptr;
+}
+
+// The body of the group FBs with Execute: bind, call, mirror the member axes.
+template <class T, class F>
+void groupFb(T* self, F call) {
+  CallCtx c = callContext();
+  AxisGroup* g = bindGroup(self->AxisGroup, c);
+  if (refuse(self, g)) return;
+  call(kernel(), slotOf(self, FbKind::Group), *g, c);
+  for (Axis* ax : g->axes()) mirrorCall(*ax);
+}
+
+// Group FBs that also take an axis (add / remove): both must belong to the calling task.
+template <class T, class F>
+void groupAxisFb(T* self, F call) {
+  CallCtx c = callContext();
+  AxisGroup* g = bindGroup(self->AxisGroup, c);
+  Axis* ax = g ? bind(self->Axis, c) : nullptr;
+  if (refuse(self, ax)) return;
+  call(kernel(), slotOf(self, FbKind::Group), *g, *ax, c);
+}
+
+void MC_AddAxisToGroup(sm3::MC_AddAxisToGroup* self) {
+  groupAxisFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, Axis& ax, const CallCtx& c) { callAddAxisToGroup(k, fb, g, ax, self->Execute, c); });
+}
+void MC_RemoveAxisFromGroup(sm3::MC_RemoveAxisFromGroup* self) {
+  groupAxisFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, Axis& ax, const CallCtx& c) { callRemoveAxisFromGroup(k, fb, g, ax, self->Execute, c); });
+}
+void MC_UngroupAllAxes(sm3::MC_UngroupAllAxes* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) { callUngroupAllAxes(k, fb, g, self->Execute, c); });
+}
+void MC_GroupEnable(sm3::MC_GroupEnable* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) { callGroupEnable(k, fb, g, self->Execute, c); });
+}
+void MC_GroupDisable(sm3::MC_GroupDisable* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) { callGroupDisable(k, fb, g, self->Execute, c); });
+}
+void MC_GroupReset(sm3::MC_GroupReset* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) { callGroupReset(k, fb, g, self->Execute, c); });
+}
+void SMC_GroupPower(sm3::SMC_GroupPower* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    callGroupPower(k, fb, g, self->__members, self, self->Enable, self->bRegulatorOn, self->bDriveStart, c);
+  });
+}
+
+// Readers: Valid and Busy while Enable; refreshed at every call.
+template <class T, class F>
+void groupReader(T* self, F fill) {
+  CallCtx c = callContext();
+  AxisGroup* g = self->Enable ? bindGroup(self->AxisGroup, c) : nullptr;
+  self->Valid = self->Busy = self->Error = false;
+  self->ErrorID = 0;
+  if (!self->Enable) return;
+  if (!g) {
+    self->Error = true;
+    self->ErrorID = static_cast<decltype(self->ErrorID)>(smcError(Error::NotReadyForMotion));
+    return;
+  }
+  self->Valid = self->Busy = true;
+  fill(*g);
+}
+
+void MC_GroupReadStatus(sm3::MC_GroupReadStatus* self) {
+  self->GroupMoving = self->GroupHoming = self->GroupErrorStop = self->GroupStandby = self->GroupStopping = self->GroupDisabled =
+      self->TrackingDynamicCS = self->InSync = false;
+  self->ActiveMovementId = 0;
+  groupReader(self, [&](AxisGroup& g) {
+    switch (g.state()) {
+      case GroupState::Disabled: self->GroupDisabled = true; break;
+      case GroupState::Standby: self->GroupStandby = true; break;
+      case GroupState::Moving: self->GroupMoving = true; break;
+      case GroupState::Homing: self->GroupHoming = true; break;
+      case GroupState::Stopping: self->GroupStopping = true; break;
+      case GroupState::ErrorStop: self->GroupErrorStop = true; break;
+    }
+    self->ActiveMovementId = static_cast<uint32_t>(g.activeMovementId);
+    // Not moving along a path: in sync when every member stands at its set point.
+    bool still = true;
+    for (const Axis* ax : g.axes()) still = still && ax->set().v == 0;
+    self->InSync = g.enabled() && g.state() != GroupState::ErrorStop && still;
+  });
+}
+
+void MC_GroupReadError(sm3::MC_GroupReadError* self) {
+  self->GroupErrorID = 0;
+  groupReader(self, [&](AxisGroup& g) {
+    self->ErrorID = static_cast<decltype(self->ErrorID)>(smcError(g.axisError()));
+    self->GroupErrorID = static_cast<decltype(self->GroupErrorID)>(smcError(g.groupError()));
+  });
+}
+
+void MC_GroupReadConfiguration(sm3::MC_GroupReadConfiguration* self) {
+  self->pAxis = nullptr;
+  self->NumAxes = 0;
+  groupReader(self, [&](AxisGroup& g) {
+    self->NumAxes = static_cast<uint32_t>(g.axes().size());
+    MotionSession& s = MotionSession::current();
+    if (self->IdentInGroup >= g.axes().size()) {   // no such member: an error, not a dangling pointer
+      self->Valid = false;
+      self->Error = true;
+      self->ErrorID = static_cast<decltype(self->ErrorID)>(smcError(Error::AgAxisNotInGroup));
+      return;
+    }
+    const Axis* ax = g.axes()[self->IdentInGroup];
+    self->pAxis = static_cast<sm3::AXIS_REF_SM3*>(s.axisVars[ax->index()].var);
+  });
+}
+
+}  // namespace
+
+namespace stc::motion {
+
+void registerSm3GroupNatives(MotionLibrary& lib) {
+  STC_SM3_NATIVE(MC_AddAxisToGroup, MC_AddAxisToGroup)
+  STC_SM3_NATIVE(MC_RemoveAxisFromGroup, MC_RemoveAxisFromGroup)
+  STC_SM3_NATIVE(MC_UngroupAllAxes, MC_UngroupAllAxes)
+  STC_SM3_NATIVE(MC_GroupEnable, MC_GroupEnable)
+  STC_SM3_NATIVE(MC_GroupDisable, MC_GroupDisable)
+  STC_SM3_NATIVE(MC_GroupReset, MC_GroupReset)
+  STC_SM3_NATIVE(SMC_GroupPower, SMC_GroupPower)
+  STC_SM3_NATIVE(MC_GroupReadStatus, MC_GroupReadStatus)
+  STC_SM3_NATIVE(MC_GroupReadError, MC_GroupReadError)
+  STC_SM3_NATIVE(MC_GroupReadConfiguration, MC_GroupReadConfiguration)
+}
+
+}  // namespace stc::motion

@@ -1,0 +1,146 @@
+// The axis-group state machine and its administration instructions
+// (docs/motion-groups.md, "States").
+#include "stdlib-motion/group/AxisGroup.h"
+
+#include <algorithm>
+
+#include "stdlib-motion/core/Kernel.h"
+
+namespace stc::motion {
+
+int AxisGroup::identOf(const Axis& ax) const {
+  for (size_t i = 0; i < axes_.size(); ++i)
+    if (axes_[i] == &ax) return static_cast<int>(i);
+  return -1;
+}
+
+void AxisGroup::removeAxis(Axis& ax) { axes_.erase(std::remove(axes_.begin(), axes_.end(), &ax), axes_.end()); }
+
+void AxisGroup::enterErrorStop(Error group, Error axis) {
+  state_ = GroupState::ErrorStop;
+  if (groupError_ == Error::None) groupError_ = group;
+  if (axisError_ == Error::None) axisError_ = axis;
+}
+
+namespace {
+
+void done(Kernel& k, FbSlot& fb, const CallCtx& c) { k.finish(fb, &c, c.cycle, true, false, Error::None); }
+
+// The group of another enabled group that already holds `ax`, if any.
+bool inOtherEnabledGroup(const Kernel& k, const AxisGroup& g, const Axis& ax) {
+  for (size_t i = 0; i < k.groupCount(); ++i) {
+    const AxisGroup* o = k.group(static_cast<uint32_t>(i));
+    if (o && o != &g && o->enabled() && o->identOf(ax) >= 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void callAddAxisToGroup(Kernel& k, FbSlot& fb, AxisGroup& g, Axis& ax, bool execute, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  if (g.enabled()) return k.fail(fb, Error::AgNotDisabled, c);
+  if (g.identOf(ax) >= 0) return k.fail(fb, Error::AgAxisAlreadyInGroup, c);
+  if (g.axes().size() >= kMaxGroupAxes) return k.fail(fb, Error::AgTooManyAxes, c);
+  g.addAxis(ax);
+  done(k, fb, c);
+}
+
+void callRemoveAxisFromGroup(Kernel& k, FbSlot& fb, AxisGroup& g, Axis& ax, bool execute, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  if (g.enabled()) return k.fail(fb, Error::AgNotDisabled, c);
+  if (g.identOf(ax) < 0) return k.fail(fb, Error::AgAxisNotInGroup, c);
+  g.removeAxis(ax);
+  done(k, fb, c);
+}
+
+void callUngroupAllAxes(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  if (g.enabled()) return k.fail(fb, Error::AgNotDisabled, c);
+  g.clearAxes();
+  done(k, fb, c);
+}
+
+void callGroupEnable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  if (g.enabled()) return done(k, fb, c);   // already enabled: nothing to do
+  if (g.axes().empty()) return k.fail(fb, Error::AgNoAxes, c);
+  for (const Axis* ax : g.axes()) {
+    const AxisKind kind = ax->config().drive.kind;
+    // Servo and virtual (servo) axes only; every member powered and at rest.
+    if (kind != AxisKind::Servo && kind != AxisKind::Virtual) return k.fail(fb, Error::AgAxisNotServo, c);
+    if (!ax->ready() || ax->state() != AxisState::Standstill) return k.fail(fb, Error::AgAxisNotReady, c);
+    if (inOtherEnabledGroup(k, g, *ax)) return k.fail(fb, Error::AgAxisInOtherGroup, c);
+  }
+  g.clearErrors();
+  g.setState(GroupState::Standby);
+  done(k, fb, c);
+}
+
+void callGroupDisable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  g.setState(GroupState::Disabled);
+  g.clearErrors();
+  done(k, fb, c);
+}
+
+void callGroupReset(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  if (!g.enabled()) return k.fail(fb, Error::AgNotEnabled, c);
+  if (g.state() != GroupState::ErrorStop) return done(k, fb, c);   // no error: nothing to reset
+  // Not while the members still brake from the error.
+  for (const Axis* ax : g.axes())
+    if (ax->set().v != 0 || ax->set().a != 0) return k.fail(fb, Error::AgStillDecelerating, c);
+  // The members' errors and faults are reset with the group's (an MC_Reset each).
+  for (Axis* ax : g.axes())
+    if (ax->state() == AxisState::ErrorStop) {
+      ax->clearError();
+      ax->setState(ax->operational() ? AxisState::Standstill : AxisState::PowerOff);
+    }
+  g.clearErrors();
+  g.setState(GroupState::Standby);
+  done(k, fb, c);
+}
+
+void callGroupPower(Kernel& k, FbSlot& fb, AxisGroup& g, uint64_t (&handles)[kMaxGroupAxes], void* instance, bool enable,
+                    bool regulatorOn, bool driveStart, const CallCtx& c) {
+  fb.execute = enable;
+  fb.lastCallCycle = c.cycle;
+  auto memberSlot = [&](size_t i) -> FbSlot& { return k.slot(handles[i], instance, FbKind::Power, nullptr); };
+  FbOutputs o;
+  if (enable) {
+    o.status = !g.axes().empty();
+    for (size_t i = 0; i < g.axes().size(); ++i) {
+      Axis& ax = *g.axes()[i];
+      FbSlot& s = memberSlot(i);
+      // A slot that powered another axis before a membership change lets go of it.
+      if (s.axis && s.axis != &ax && s.axis->power == &s) s.axis->power = nullptr;
+      k.callPower(s, ax, true, regulatorOn, driveStart, c);
+      o.status = o.status && s.out.status;
+      o.busy = true;
+      if (s.out.error && !o.error) {
+        o.error = true;
+        o.errorId = s.out.errorId;
+      }
+    }
+  } else {
+    for (size_t i = 0; i < kMaxGroupAxes; ++i)
+      if (handles[i]) {
+        FbSlot& s = memberSlot(i);
+        if (s.axis) k.callPower(s, *s.axis, false, false, false, c);
+      }
+  }
+  fb.out = o;
+  fb.sync();
+}
+
+void stepGroup(Kernel&, AxisGroup& g, uint64_t) {
+  if (!g.enabled() || g.state() == GroupState::ErrorStop) return;
+  for (const Axis* ax : g.axes())
+    if (ax->state() == AxisState::ErrorStop) {
+      g.enterErrorStop(Error::AgAxisError, ax->error());
+      return;
+    }
+}
+
+}  // namespace stc::motion

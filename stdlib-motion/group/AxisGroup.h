@@ -1,0 +1,82 @@
+// Axis groups (PLCopen Motion Control Part 4, CODESYS SM3_Robotics): a set of
+// member axes that the group's commands move together.  This header holds the
+// group object and its state machine; the administration instructions
+// (add/remove axes, enable, disable, reset, power) are the call* functions
+// below.  Group motion (lines, arcs, PTP) builds on it (docs/motion-groups.md).
+//
+// A group belongs to the task that first calls one of its FBs, like an axis;
+// its members must belong to that task too.  Every admin instruction takes
+// effect in its call (Done in the call of the rising edge).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "stdlib-motion/core/Axis.h"
+#include "stdlib-motion/core/Errors.h"
+#include "stdlib-motion/core/Fb.h"
+
+namespace stc::motion {
+
+class Kernel;
+struct CallCtx;
+
+// SMC_AXIS_GROUP_STATE; the numbering is stc's (the manuals list the names only).
+enum class GroupState : uint8_t { Disabled = 0, Standby = 1, Moving = 2, Homing = 3, Stopping = 4, ErrorStop = 5 };
+
+// SMC_RCNST.MAX_AXES: six kinematic axes plus three additional axes.
+inline constexpr size_t kMaxGroupAxes = 9;
+
+class AxisGroup {
+public:
+  explicit AxisGroup(uint32_t index) : index_(index) {}
+
+  uint32_t index() const { return index_; }
+  GroupState state() const { return state_; }
+  bool enabled() const { return state_ != GroupState::Disabled; }
+  // MC_GroupReadError: the group's own error (GroupErrorID) and the member axis
+  // error that caused it (ErrorID), None when there is none.
+  Error groupError() const { return groupError_; }
+  Error axisError() const { return axisError_; }
+  const std::vector<Axis*>& axes() const { return axes_; }
+  // The member's index in the group (IdentInGroup), or -1.
+  int identOf(const Axis& ax) const;
+
+  uint32_t task = UINT32_MAX;          // the owning task (first FB call)
+  uint64_t activeMovementId = 0;       // MC_GroupReadStatus.ActiveMovementId
+
+  // ---- state machine (used by the group instructions and the kernel step)
+  void addAxis(Axis& ax) { axes_.push_back(&ax); }
+  void removeAxis(Axis& ax);
+  void clearAxes() { axes_.clear(); }
+  void setState(GroupState s) { state_ = s; }
+  // GroupErrorStop with the group error and the axis error behind it.
+  void enterErrorStop(Error group, Error axis);
+  void clearErrors() { groupError_ = axisError_ = Error::None; }
+
+private:
+  uint32_t index_;
+  GroupState state_ = GroupState::Disabled;
+  Error groupError_ = Error::None;
+  Error axisError_ = Error::None;
+  std::vector<Axis*> axes_;
+};
+
+// ---- the administration instructions (Execute FBs: Done or Error in the call of the edge)
+void callAddAxisToGroup(Kernel& k, FbSlot& fb, AxisGroup& g, Axis& ax, bool execute, const CallCtx& c);
+void callRemoveAxisFromGroup(Kernel& k, FbSlot& fb, AxisGroup& g, Axis& ax, bool execute, const CallCtx& c);
+void callUngroupAllAxes(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c);
+void callGroupEnable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c);
+void callGroupDisable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c);
+void callGroupReset(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c);
+// SMC_GroupPower: MC_Power on every member (Enable FB; Status when every member is ready).
+// Each member is powered through a kernel slot of its own, whose handle the ST instance keeps
+// in `handles` (by member index; 0 = none yet) with `instance` as the slots' owner.
+void callGroupPower(Kernel& k, FbSlot& fb, AxisGroup& g, uint64_t (&handles)[kMaxGroupAxes], void* instance, bool enable,
+                    bool regulatorOn, bool driveStart, const CallCtx& c);
+
+// The group part of the kernel step, after the member axes were stepped: a
+// member in ErrorStop sends an enabled group to GroupErrorStop.
+void stepGroup(Kernel& k, AxisGroup& g, uint64_t cycle);
+
+}  // namespace stc::motion
