@@ -132,6 +132,13 @@ constexpr uint16_t kSmcNumbers[] = {
     0x7108,  // AgNotEnabled: SMC_AG_NOT_ENABLED
     0x7109,  // AgStillDecelerating: SMC_AG_STILL_DECELERATING
     0x710A,  // AgAxisError: SMC_AG_AXIS_ERROR
+    0x710B,  // AgInErrorStop: SMC_AG_IN_ERRORSTOP
+    0x710C,  // AgStopping: SMC_AG_STOPPING
+    0x710D,  // AgSingleAxisActive: SMC_AG_SINGLE_AXIS_ACTIVE
+    0x710E,  // AgInterruptedBySingleAxis: SMC_AXIS_GROUP_INTERRUPTED_BY_SINGLE_AXIS
+    0x710F,  // AgAxisLimitsMissing: SMC_AG_AXIS_LIMITS_MISSING
+    0x7110,  // AgInvalidMoveInputs: SMC_AG_INVALID_MOVE_INPUTS
+    0x7111,  // AgBlendingNotSupported: SMC_AG_BLENDING_NOT_SUPPORTED
 };
 static_assert(sizeof(kSmcNumbers) / sizeof(kSmcNumbers[0]) == static_cast<size_t>(Error::Count_), "one SMC_ERROR per core fault");
 
@@ -368,6 +375,13 @@ const ErrorText kErrors[] = {
   {28936, "SMC_AG_NOT_ENABLED", "the axis group is disabled (MC_GroupEnable first) (stc)"},
   {28937, "SMC_AG_STILL_DECELERATING", "the member axes are still braking from the error (stc)"},
   {28938, "SMC_AG_AXIS_ERROR", "a member axis is in ErrorStop (its error: MC_GroupReadError.ErrorID) (stc)"},
+  {28939, "SMC_AG_IN_ERRORSTOP", "the axis group is in GroupErrorStop (MC_GroupReset first) (stc)"},
+  {28940, "SMC_AG_STOPPING", "MC_GroupStop holds the axis group in GroupStopping (stc)"},
+  {28941, "SMC_AG_SINGLE_AXIS_ACTIVE", "a single-axis command controls a member axis (stc)"},
+  {28942, "SMC_AXIS_GROUP_INTERRUPTED_BY_SINGLE_AXIS", "a single-axis command took a member axis of the moving group (stc)"},
+  {28943, "SMC_AG_AXIS_LIMITS_MISSING", "a member axis has no fMaxVelocity / fMaxAcceleration for group moves (stc)"},
+  {28944, "SMC_AG_INVALID_MOVE_INPUTS", "a position, factor or dynamic input is not finite or out of range (stc)"},
+  {28945, "SMC_AG_BLENDING_NOT_SUPPORTED", "this group move has no transition element for a blending buffer mode (stc)"},
 };
 
 const ErrorText* find(uint16_t id) {

@@ -57,6 +57,8 @@ inline void publish(void* instance, const FbOutputs& o) {
   if constexpr (requires { s->bBusy; }) s->bBusy = o.busy;
   if constexpr (requires { s->Active; }) s->Active = o.active;
   if constexpr (requires { s->CommandAborted; }) s->CommandAborted = o.aborted;
+  if constexpr (requires { s->CommandAccepted; }) s->CommandAccepted = o.commandAccepted;
+  if constexpr (requires { s->MovementId; }) s->MovementId = o.movementId;
   if constexpr (requires { s->bCommandAborted; }) s->bCommandAborted = o.aborted;
   if constexpr (requires { s->Error; }) s->Error = o.error;
   if constexpr (requires { s->bError; }) s->bError = o.error;

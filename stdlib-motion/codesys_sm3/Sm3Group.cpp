@@ -2,6 +2,7 @@
 // an AXIS_GROUP_REF_SM3 to its kernel group, the administration FBs and the
 // group readers.  The semantics live in stdlib-motion/group.
 #include "stdlib-motion/codesys_sm3/Sm3Face.h"
+#include "stdlib-motion/group/GroupMotion.h"
 
 using namespace stc::motion;
 using namespace stc::motion::sm3face;
@@ -68,6 +69,42 @@ void SMC_GroupPower(sm3::SMC_GroupPower* self) {
   groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
     callGroupPower(k, fb, g, self->__members, self, self->Enable, self->bRegulatorOn, self->bDriveStart, c);
   });
+}
+
+// MC_MoveDirect*: SMC_POS_REF's v[i] is member i's coordinate in every coordinate system
+// (without kinematics every system equals ACS, docs/motion-groups.md); in TCS positions
+// are relative to the pose at the start.
+template <class T>
+void moveDirect(T* self, const sm3::SMC_POS_REF& pos, bool relative) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    DirectInputs in;
+    for (size_t i = 0; i < kMaxGroupAxes; ++i) in.position[i] = pos.v[i];
+    in.relative = relative || self->CoordSystem == 5;   // TCS
+    in.velFactor = self->VelFactor;
+    in.accFactor = self->AccFactor;
+    in.jerkFactor = self->JerkFactor;
+    in.bufferMode = bufferModeOf(self->BufferMode);
+    in.transitionMode = self->TransitionMode;
+    callGroupMoveDirect(k, fb, g, self->Execute, in, c);
+  });
+}
+void MC_MoveDirectAbsolute(sm3::MC_MoveDirectAbsolute* self) { moveDirect(self, self->Position, false); }
+void MC_MoveDirectRelative(sm3::MC_MoveDirectRelative* self) { moveDirect(self, self->Distance, true); }
+
+template <class T>
+GroupStopInputs stopInputs(const T* self) {
+  GroupStopInputs in;
+  in.deceleration = self->Deceleration;
+  in.jerk = self->Jerk;
+  in.accFactor = self->AccFactor;
+  in.jerkFactor = self->JerkFactor;
+  return in;
+}
+void MC_GroupHalt(sm3::MC_GroupHalt* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) { callGroupHalt(k, fb, g, self->Execute, stopInputs(self), c); });
+}
+void MC_GroupStop(sm3::MC_GroupStop* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) { callGroupStop(k, fb, g, self->Execute, stopInputs(self), c); });
 }
 
 // Readers: Valid and Busy while Enable; refreshed at every call.
@@ -148,6 +185,10 @@ void registerSm3GroupNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(MC_GroupReadStatus, MC_GroupReadStatus)
   STC_SM3_NATIVE(MC_GroupReadError, MC_GroupReadError)
   STC_SM3_NATIVE(MC_GroupReadConfiguration, MC_GroupReadConfiguration)
+  STC_SM3_NATIVE(MC_MoveDirectAbsolute, MC_MoveDirectAbsolute)
+  STC_SM3_NATIVE(MC_MoveDirectRelative, MC_MoveDirectRelative)
+  STC_SM3_NATIVE(MC_GroupHalt, MC_GroupHalt)
+  STC_SM3_NATIVE(MC_GroupStop, MC_GroupStop)
 }
 
 }  // namespace stc::motion

@@ -71,6 +71,8 @@ FaultClass faultClass(Error e) {
     case Error::AgTooManyAxes:
     case Error::AgNoAxes:
     case Error::AgAxisNotServo:
+    case Error::AgAxisLimitsMissing:
+    case Error::AgInvalidMoveInputs:
       return FaultClass::InvalidParameter;
     case Error::RegulatorOrStartNotSet:
     case Error::WrongControllerMode:
@@ -102,6 +104,11 @@ FaultClass faultClass(Error e) {
     case Error::AgAxisInOtherGroup:
     case Error::AgNotEnabled:
     case Error::AgStillDecelerating:
+    case Error::AgInErrorStop:
+    case Error::AgStopping:
+    case Error::AgSingleAxisActive:
+    case Error::AgInterruptedBySingleAxis:
+    case Error::AgBlendingNotSupported:
       return FaultClass::WrongState;
     case Error::BufferFull:
       return FaultClass::QueueFull;

@@ -137,6 +137,13 @@ enum class Error : uint16_t {
   AgNotEnabled,
   AgStillDecelerating,    // reset while the members still brake from the error
   AgAxisError,            // GroupErrorID when a member axis went to ErrorStop
+  AgInErrorStop,          // a motion command on a group in GroupErrorStop
+  AgStopping,             // a motion command while MC_GroupStop holds the group
+  AgSingleAxisActive,     // a group move while a single-axis command controls a member
+  AgInterruptedBySingleAxis,   // a single-axis command took a member of the moving group
+  AgAxisLimitsMissing,    // PTP: a member without fMaxVelocity / fMaxAcceleration
+  AgInvalidMoveInputs,    // a position, distance, factor or dynamic value out of range
+  AgBlendingNotSupported, // a blending buffer mode where the move has no transition
   Count_,   // the number of faults (not a fault)
 };
 

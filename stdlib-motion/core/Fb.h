@@ -34,6 +34,9 @@ struct FbOutputs {
   bool startSync = false;     // MC_GearInPos.StartSync
   bool endOfProfile = false;  // MC_CamIn.EndOfProfile (a one-cycle pulse in periodic mode)
   Error errorId = Error::None;
+  // Group moves: CommandAccepted (follows Execute once accepted) and MovementId.
+  bool commandAccepted = false;
+  uint32_t movementId = 0;
   // MC_Power only.
   bool status = false, regulatorRealState = false, driveStartRealState = false;
   bool terminal() const { return done || error || aborted; }

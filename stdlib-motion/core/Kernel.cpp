@@ -5,6 +5,7 @@
 #include "stdlib-motion/core/Kernel.h"
 
 #include "stdlib-motion/core/InputBounds.h"
+#include "stdlib-motion/group/GroupMotion.h"
 
 #include <algorithm>
 #include <cmath>
@@ -641,6 +642,9 @@ void Kernel::cycle(uint32_t task, int64_t nowNs, int64_t intervalNs, uint64_t cy
   stepNowNs_ = nowNs;
   // Encoder-only axes are inputs: they are stepped first, so every axis that
   // follows one sees its value of this cycle, whatever the order of the axes.
+  // Groups first write their members' set states of this cycle.
+  for (auto& g : groups_)
+    if (g->task == task) groupBeforeStep(*this, *g, nowNs, cycle);
   stepped_.assign(axes_.size(), 0);
   for (Axis* a : encoders_)
     if (a->task == task) {
@@ -659,7 +663,7 @@ void Kernel::cycle(uint32_t task, int64_t nowNs, int64_t intervalNs, uint64_t cy
     for (size_t i = chain_.size(); i-- > 0;) stepAxis(*chain_[i], nowNs, dt, cycle);
   }
   for (auto& g : groups_)
-    if (g->task == task) stepGroup(*this, *g, cycle);
+    if (g->task == task) groupAfterStep(*this, *g, nowNs, cycle);
 }
 
 void Kernel::errorStop(Axis& ax, Error e, int64_t nowNs, uint64_t cycle) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "stdlib-motion/core/Kernel.h"
+#include "stdlib-motion/group/GroupMotion.h"
 
 namespace stc::motion {
 
@@ -79,6 +80,7 @@ void callGroupEnable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Ca
 
 void callGroupDisable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c) {
   if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  abortGroupMotion(k, g, c);
   g.setState(GroupState::Disabled);
   g.clearErrors();
   done(k, fb, c);
@@ -132,15 +134,6 @@ void callGroupPower(Kernel& k, FbSlot& fb, AxisGroup& g, uint64_t (&handles)[kMa
   }
   fb.out = o;
   fb.sync();
-}
-
-void stepGroup(Kernel&, AxisGroup& g, uint64_t) {
-  if (!g.enabled() || g.state() == GroupState::ErrorStop) return;
-  for (const Axis* ax : g.axes())
-    if (ax->state() == AxisState::ErrorStop) {
-      g.enterErrorStop(Error::AgAxisError, ax->error());
-      return;
-    }
 }
 
 }  // namespace stc::motion

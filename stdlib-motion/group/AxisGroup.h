@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "stdlib-motion/core/Axis.h"
@@ -20,6 +21,8 @@ namespace stc::motion {
 
 class Kernel;
 struct CallCtx;
+class GroupMotion;
+class DirectGenerator;
 
 // SMC_AXIS_GROUP_STATE; the numbering is stc's (the manuals list the names only).
 enum class GroupState : uint8_t { Disabled = 0, Standby = 1, Moving = 2, Homing = 3, Stopping = 4, ErrorStop = 5 };
@@ -44,6 +47,21 @@ public:
 
   uint32_t task = UINT32_MAX;          // the owning task (first FB call)
   uint64_t activeMovementId = 0;       // MC_GroupReadStatus.ActiveMovementId
+  uint64_t nextMovementId = 1;         // the id the next accepted movement gets
+
+  // ---- motion (GroupMotion.cpp)
+  FbSlot* pending = nullptr;           // accepted in a call (Aborting), started in that cycle's step
+  FbSlot* active = nullptr;            // the command in control
+  std::vector<FbSlot*> queue;          // buffered commands behind it
+  std::shared_ptr<const GroupMotion> motion;   // the active command's set points
+  int64_t originNs = 0;                // when it started
+  // The latest motion (also after it ended or was aborted) and its start: the exact
+  // state the next command starts from, whatever the members' last written step was.
+  std::shared_ptr<const GroupMotion> lastMotion;
+  int64_t lastOriginNs = 0;
+  bool ended = false;                  // the last command ended: GroupStandby in the next step
+  std::vector<std::shared_ptr<DirectGenerator>> gens;   // per member while the group moves
+  uint64_t memberHandles[kMaxGroupAxes] = {};            // kernel slots standing for the group on its members
 
   // ---- state machine (used by the group instructions and the kernel step)
   void addAxis(Axis& ax) { axes_.push_back(&ax); }
@@ -74,9 +92,5 @@ void callGroupReset(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Cal
 // in `handles` (by member index; 0 = none yet) with `instance` as the slots' owner.
 void callGroupPower(Kernel& k, FbSlot& fb, AxisGroup& g, uint64_t (&handles)[kMaxGroupAxes], void* instance, bool enable,
                     bool regulatorOn, bool driveStart, const CallCtx& c);
-
-// The group part of the kernel step, after the member axes were stepped: a
-// member in ErrorStop sends an enabled group to GroupErrorStop.
-void stepGroup(Kernel& k, AxisGroup& g, uint64_t cycle);
 
 }  // namespace stc::motion

@@ -103,7 +103,8 @@ struct Gen {
       if (!isUnion) pos = f.offset + size;
     }
     if (!isUnion && l.size > pos) body << "  uint8_t _pad" << pad++ << "[" << l.size - pos << "];\n";
-    out << "struct alignas(" << l.align << ") " << t->name << (isUnion ? "_u" : "") << " {\n" << body.str() << "};\n";
+    // A UNION's members share offset 0: a C++ union (a struct would lay them out one after another).
+    out << (isUnion ? "union" : "struct") << " alignas(" << l.align << ") " << t->name << (isUnion ? "_u" : "") << " {\n" << body.str() << "};\n";
     if (isUnion) out << "using " << t->name << " = " << t->name << "_u;\n";
     out << "static_assert(sizeof(" << t->name << ") == " << l.size << ");\n";
     for (auto& a : asserts) out << a << "\n";

@@ -1,0 +1,388 @@
+// Group commands and the group's kernel step (docs/motion-groups.md, "Motion").
+#include "stdlib-motion/group/GroupMotion.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "stdlib-motion/core/InputBounds.h"
+#include "stdlib-motion/core/Kernel.h"
+#include "stdlib-motion/core/Profiles.h"
+
+namespace stc::motion {
+
+void PtpMotion::at(double t, Kinematic* q) const {
+  for (size_t i = 0; i < profiles.size(); ++i) q[i] = profiles[i].at(t);
+}
+
+PlanStatus planPtp(const std::vector<Kinematic>& start, const std::vector<double>& target, const std::vector<Limits>& lim,
+                   PtpMotion& out) {
+  const size_t n = start.size();
+  out.profiles.assign(n, Profile{});
+  out.total = 0;
+  bool atRest = true;
+  for (size_t i = 0; i < n; ++i) {
+    if (PlanStatus s = planPosition(start[i], target[i], 0, lim[i], out.profiles[i]); s != PlanStatus::Ok) return s;
+    out.total = std::max(out.total, out.profiles[i].duration());
+    atRest = atRest && start[i].v == 0 && start[i].a == 0;
+  }
+  if (!atRest || out.total <= 0) return PlanStatus::Ok;
+  // Time scaling of the faster members: the same plan at k times the speed lasts T_i / k.
+  for (size_t i = 0; i < n; ++i) {
+    const double ti = out.profiles[i].duration();
+    if (ti <= 0 || ti >= out.total) continue;
+    const double f = ti / out.total;
+    Limits l = lim[i];
+    l.vel *= f;
+    l.acc *= f * f;
+    l.dec *= f * f;
+    l.jerk *= f * f * f;
+    if (PlanStatus s = planPosition(start[i], target[i], 0, l, out.profiles[i]); s != PlanStatus::Ok) return s;
+  }
+  return PlanStatus::Ok;
+}
+
+namespace {
+
+// The data of one group command (the FB slot's behaviour).
+struct GroupCommand : FbBehaviour {
+  enum class Kind : uint8_t { Direct, Halt, Stop } kind = Kind::Direct;
+  DirectInputs direct;
+  GroupStopInputs stop;
+  void start(Kernel&, FbSlot&, Axis&, int64_t) override {}   // groups start commands themselves
+};
+
+GroupCommand& commandOf(FbSlot& fb) { return behaviourOf<GroupCommand>(fb); }
+
+// The slot that stands for the group as the command in control of member i.
+FbSlot& memberSlot(Kernel& k, AxisGroup& g, size_t i) {
+  FbSlot& s = k.slot(g.memberHandles[i], &g, FbKind::Group, nullptr);
+  s.functionStyle = true;   // the group FB, not this slot, must be called in every cycle
+  return s;
+}
+
+bool controlsMembers(Kernel& k, AxisGroup& g) {
+  if (g.gens.size() != g.axes().size()) return false;
+  for (size_t i = 0; i < g.axes().size(); ++i)
+    if (g.axes()[i]->controller != &memberSlot(k, g, i)) return false;
+  return true;
+}
+
+// The group takes control of its members (a DirectGenerator each, SynchronizedMotion).
+void takeMembers(Kernel& k, AxisGroup& g, int64_t nowNs) {
+  if (controlsMembers(k, g)) return;
+  g.gens.assign(g.axes().size(), nullptr);
+  for (size_t i = 0; i < g.axes().size(); ++i) {
+    Axis& ax = *g.axes()[i];
+    FbSlot& ms = memberSlot(k, g, i);
+    ms.axis = &ax;
+    ms.out.busy = true;
+    ax.sample(nowNs);
+    ax.controller = &ms;
+    g.gens[i] = DirectGenerator::startOn(ax, nowNs);
+    ax.setState(AxisState::SynchronizedMotion);
+  }
+}
+
+// The members are let go where they stand (GroupStandby: Standstill).
+void releaseMembers(Kernel& k, AxisGroup& g) {
+  for (size_t i = 0; i < g.axes().size(); ++i) {
+    Axis& ax = *g.axes()[i];
+    FbSlot& ms = memberSlot(k, g, i);
+    ms.out.busy = false;
+    if (ax.controller != &ms) continue;
+    ax.controller = nullptr;
+    ax.holdAt(ax.set().p);
+    if (ax.state() == AxisState::SynchronizedMotion) ax.setState(AxisState::Standstill);
+  }
+  g.gens.clear();
+  g.lastMotion.reset();
+}
+
+// The members' dynamic limits for group PTP moves: their configured maxima x the factors.
+bool memberLimits(const AxisGroup& g, double vf, double af, double jf, std::vector<Limits>& out) {
+  out.clear();
+  for (const Axis* ax : g.axes()) {
+    const AxisConfig& c = ax->config();
+    if (!(c.maxVelocity > 0) || !(c.maxAcceleration > 0)) return false;
+    const double dec = c.maxDeceleration > 0 ? c.maxDeceleration : c.maxAcceleration;
+    out.push_back(Limits{c.maxVelocity * vf, c.maxAcceleration * af, dec * af, c.maxJerk > 0 ? c.maxJerk * jf : 0});
+  }
+  return true;
+}
+
+// Ends every command of the group: the active one and the buffered ones.
+void endCommands(Kernel& k, AxisGroup& g, const CallCtx* c, uint64_t cycle, Error e) {
+  auto end = [&](FbSlot* fb) {
+    if (!fb) return;
+    fb->out.active = false;
+    k.finish(*fb, c, cycle, false, e == Error::None, e);
+  };
+  end(g.pending);
+  end(g.active);
+  for (FbSlot* q : g.queue) end(q);
+  g.pending = g.active = nullptr;
+  g.queue.clear();
+  g.motion.reset();
+}
+
+// The group goes to GroupErrorStop: its commands end with the error, the members
+// that are not in error brake with their own deceleration.
+void brakeMembers(Kernel& k, AxisGroup& g, int64_t nowNs) {
+  for (size_t i = 0; i < g.axes().size(); ++i) {
+    Axis& ax = *g.axes()[i];
+    FbSlot& ms = memberSlot(k, g, i);
+    ms.out.busy = false;
+    if (ax.controller != &ms) continue;   // in ErrorStop, or taken by a single-axis command
+    ax.controller = nullptr;
+    if (ax.state() == AxisState::ErrorStop) continue;
+    if (ax.set().v == 0 && ax.set().a == 0) {
+      ax.holdAt(ax.set().p);
+      ax.setState(AxisState::Standstill);
+      continue;
+    }
+    const AxisConfig& c = ax.config();
+    const double dec = c.errorDeceleration > 0 ? c.errorDeceleration : c.maxDeceleration > 0 ? c.maxDeceleration : 1000.0;
+    ax.sample(nowNs);
+    ax.startStop(Limits{1, dec, dec, 0}, nowNs);
+    ax.setState(AxisState::Stopping);
+  }
+  g.gens.clear();
+  g.lastMotion.reset();
+}
+
+void groupError(Kernel& k, AxisGroup& g, Error groupErr, Error axisErr, int64_t nowNs, uint64_t cycle) {
+  endCommands(k, g, nullptr, cycle, groupErr);
+  brakeMembers(k, g, nowNs);
+  g.ended = false;
+  g.enterErrorStop(groupErr, axisErr);
+}
+
+// Starts fb (the group's next command) at nowNs from the members' present set states.
+Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs) {
+  GroupCommand& cmd = commandOf(fb);
+  // The members' exact state now: from the group's latest motion while it controls them
+  // (the axes have not been stepped in this cycle yet), else their set states.
+  std::vector<Kinematic> start(g.axes().size());
+  if (g.lastMotion && controlsMembers(k, g)) {
+    Kinematic q[kMaxGroupAxes];
+    g.lastMotion->at(static_cast<double>(nowNs - g.lastOriginNs) * 1e-9, q);
+    std::copy(q, q + start.size(), start.begin());
+  } else {
+    for (size_t i = 0; i < start.size(); ++i) start[i] = g.axes()[i]->set();
+  }
+  takeMembers(k, g, nowNs);
+  auto m = std::make_shared<PtpMotion>();
+  std::vector<Limits> lim;
+  std::vector<double> target(g.axes().size());
+  if (cmd.kind == GroupCommand::Kind::Direct) {
+    if (!memberLimits(g, cmd.direct.velFactor, cmd.direct.accFactor, cmd.direct.jerkFactor, lim)) return Error::AgAxisLimitsMissing;
+    for (size_t i = 0; i < target.size(); ++i)
+      target[i] = cmd.direct.relative ? start[i].p + cmd.direct.position[i] : cmd.direct.position[i];
+  } else {
+    // Halt / stop: every member brakes to rest along its own profile (the PTP path is
+    // not defined); Deceleration and Jerk are the group's, limited by the axes' maxima.
+    if (!memberLimits(g, 1, 1, 1, lim)) return Error::AgAxisLimitsMissing;
+    for (size_t i = 0; i < target.size(); ++i) {
+      Limits& l = lim[i];
+      l.vel = std::max(l.vel, std::fabs(start[i].v));
+      l.dec = cmd.stop.deceleration * cmd.stop.accFactor;
+      l.acc = std::max(l.acc, l.dec);
+      l.jerk = cmd.stop.jerk > 0 ? cmd.stop.jerk * cmd.stop.jerkFactor : 0;
+      Profile stopProfile;
+      planVelocity(start[i], 0, l, stopProfile);
+      target[i] = stopProfile.end().p;
+    }
+  }
+  if (planPtp(start, target, lim, *m) != PlanStatus::Ok) return Error::AgAxisLimitsMissing;
+  g.motion = m;
+  g.lastMotion = std::move(m);
+  g.originNs = g.lastOriginNs = nowNs;
+  g.active = &fb;
+  g.ended = false;
+  g.activeMovementId = fb.out.movementId;
+  g.setState(cmd.kind == GroupCommand::Kind::Stop ? GroupState::Stopping : GroupState::Moving);
+  fb.out.active = true;
+  fb.sync();
+  return Error::None;
+}
+
+// The accepting call: CommandAccepted, Busy and a movement id.
+void accepted(AxisGroup& g, FbSlot& fb) {
+  fb.out.busy = true;
+  fb.out.commandAccepted = true;
+  fb.out.movementId = static_cast<uint32_t>(g.nextMovementId++);
+  fb.sync();
+}
+
+// The state checks every group motion command makes in its call.
+Error motionRefusal(Kernel& k, AxisGroup& g) {
+  if (!g.enabled()) return Error::AgNotEnabled;
+  if (g.state() == GroupState::ErrorStop) return Error::AgInErrorStop;
+  if (g.state() == GroupState::Stopping) return Error::AgStopping;
+  for (size_t i = 0; i < g.axes().size(); ++i) {
+    const Axis& ax = *g.axes()[i];
+    if (!ax.ready()) return Error::AgAxisNotReady;
+    // A single-axis command on a member: the group goes to GroupErrorStop (CODESYS).
+    if (ax.controller && ax.controller != &memberSlot(k, g, i)) return Error::AgSingleAxisActive;
+  }
+  return Error::None;
+}
+
+// Execute's falling edge clears CommandAccepted (it follows Execute).
+void followExecute(FbSlot& fb, bool execute) {
+  if (!execute && fb.out.commandAccepted) {
+    fb.out.commandAccepted = false;
+    fb.sync();
+  }
+}
+
+}  // namespace
+
+void callGroupMoveDirect(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const DirectInputs& in, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return followExecute(fb, execute);
+  fb.out.commandAccepted = false;
+  const size_t n = g.axes().size();
+  bool finite = bounds::rate(in.velFactor) && bounds::rate(in.accFactor) && bounds::rate(in.jerkFactor) && in.velFactor <= 1 &&
+                in.accFactor <= 1 && in.jerkFactor <= 1;
+  for (size_t i = 0; i < n; ++i) finite = finite && bounds::position(in.position[i]);
+  if (!finite) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  if (!validBufferMode(in.bufferMode)) return k.fail(fb, Error::InvalidBufferMode, c);
+  // Blending needs a transition element (TMNone is not allowed with it, manual 1.5); PTP
+  // moves have no transition elements yet (docs/motion-groups.md).
+  if (in.bufferMode != BufferMode::Aborting && in.bufferMode != BufferMode::Buffered) return k.fail(fb, Error::AgBlendingNotSupported, c);
+  if (Error e = motionRefusal(k, g); e != Error::None) {
+    if (e == Error::AgSingleAxisActive) groupError(k, g, e, Error::None, c.nowNs, c.cycle);
+    return k.fail(fb, e, c);
+  }
+  std::vector<Limits> lim;
+  if (!memberLimits(g, in.velFactor, in.accFactor, in.jerkFactor, lim)) return k.fail(fb, Error::AgAxisLimitsMissing, c);
+  GroupCommand& cmd = commandOf(fb);
+  cmd.kind = GroupCommand::Kind::Direct;
+  cmd.direct = in;
+  fb.axis = nullptr;
+  const bool idle = !g.pending && !g.active && g.queue.empty();
+  if (in.bufferMode == BufferMode::Aborting || idle) {
+    // The running and buffered commands end now; fb starts in this cycle's step.
+    endCommands(k, g, &c, c.cycle, Error::None);
+    g.pending = &fb;
+  } else {
+    if (g.queue.size() >= k.profile.queueCapacity) return k.fail(fb, Error::BufferFull, c);
+    g.queue.push_back(&fb);
+  }
+  accepted(g, fb);
+}
+
+namespace {
+
+void callGroupBrake(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const GroupStopInputs& in, const CallCtx& c,
+                    GroupCommand::Kind kind) {
+  const bool rising = k.beginExecute(fb, execute, c);
+  if (kind == GroupCommand::Kind::Stop && !execute && fb.out.done && g.state() == GroupState::Stopping && !g.active) {
+    // MC_GroupStop holds GroupStopping until its Execute falls (PLCopen Part 4).
+    g.setState(GroupState::Standby);
+    releaseMembers(k, g);
+  }
+  if (!rising) return followExecute(fb, execute);
+  fb.out.commandAccepted = false;
+  if (!bounds::rate(in.deceleration) || !bounds::jerk(in.jerk) || !bounds::rate(in.accFactor) || !bounds::rate(in.jerkFactor) ||
+      in.accFactor > 1 || in.jerkFactor > 1)
+    return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  if (!g.enabled()) return k.fail(fb, Error::AgNotEnabled, c);
+  if (g.state() == GroupState::ErrorStop) return k.fail(fb, Error::AgInErrorStop, c);
+  // A group stop in progress cannot be aborted (only by itself).
+  if (g.state() == GroupState::Stopping && g.active && g.active != &fb) {
+    if (kind == GroupCommand::Kind::Halt) return k.fail(fb, Error::AgStopping, c);
+  }
+  GroupCommand& cmd = commandOf(fb);
+  cmd.kind = kind;
+  cmd.stop = in;
+  fb.axis = nullptr;
+  endCommands(k, g, &c, c.cycle, Error::None);
+  g.pending = &fb;
+  accepted(g, fb);
+}
+
+}  // namespace
+
+void callGroupHalt(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const GroupStopInputs& in, const CallCtx& c) {
+  callGroupBrake(k, fb, g, execute, in, c, GroupCommand::Kind::Halt);
+}
+
+void callGroupStop(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const GroupStopInputs& in, const CallCtx& c) {
+  callGroupBrake(k, fb, g, execute, in, c, GroupCommand::Kind::Stop);
+}
+
+void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
+  if (!g.enabled() || g.state() == GroupState::ErrorStop) return;
+  // The last command ended in the previous step: the group stands (one cycle after the
+  // last position change, as CODESYS).
+  if (g.ended && !g.pending && !g.active) {
+    g.ended = false;
+    if (g.state() == GroupState::Moving) g.setState(GroupState::Standby);
+    if (g.state() == GroupState::Standby) releaseMembers(k, g);
+  }
+  if (g.pending) {
+    FbSlot* fb = g.pending;
+    g.pending = nullptr;
+    if (Error e = startCommand(k, g, *fb, nowNs); e != Error::None) {
+      k.finish(*fb, nullptr, cycle, false, false, e);
+      return groupError(k, g, e, Error::None, nowNs, cycle);
+    }
+  }
+  if (!g.active || !g.motion) return;
+  // The command in control must be called in every cycle until it ends (error 30).
+  if (g.active->lastCallCycle != cycle) return groupError(k, g, Error::FbWasntCalledDuringMotion, Error::None, nowNs, cycle);
+  Kinematic q[kMaxGroupAxes];
+  const double t = static_cast<double>(nowNs - g.originNs) * 1e-9;
+  g.motion->at(t, q);
+  for (size_t i = 0; i < g.axes().size() && i < g.gens.size(); ++i) {
+    g.gens[i]->state = q[i];
+    g.gens[i]->tSet = g.axes()[i]->movement().t(nowNs);
+  }
+  if (t < g.motion->duration()) return;
+  // The end is reached in this step: Done; a buffered successor becomes active here and
+  // starts from this instant (its first motion in the next step).
+  FbSlot* done = g.active;
+  const bool stop = commandOf(*done).kind == GroupCommand::Kind::Stop;
+  g.active = nullptr;
+  g.motion.reset();
+  done->out.active = false;
+  if (stop) {   // MC_GroupStop: Done at rest, Busy ends, GroupStopping while Execute (callGroupBrake)
+    k.finish(*done, nullptr, cycle, true, false, Error::None);
+    if (!done->execute) {
+      g.setState(GroupState::Standby);
+      releaseMembers(k, g);
+    }
+    return;
+  }
+  k.finish(*done, nullptr, cycle, true, false, Error::None);
+  if (!g.queue.empty()) {
+    FbSlot* next = g.queue.front();
+    g.queue.erase(g.queue.begin());
+    if (Error e = startCommand(k, g, *next, nowNs); e != Error::None) {
+      k.finish(*next, nullptr, cycle, false, false, e);
+      groupError(k, g, e, Error::None, nowNs, cycle);
+    }
+    return;
+  }
+  g.ended = true;
+}
+
+void abortGroupMotion(Kernel& k, AxisGroup& g, const CallCtx& c) {
+  endCommands(k, g, &c, c.cycle, Error::None);
+  brakeMembers(k, g, c.nowNs);
+  g.ended = false;
+}
+
+void groupAfterStep(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
+  if (!g.enabled() || g.state() == GroupState::ErrorStop) return;
+  for (size_t i = 0; i < g.axes().size(); ++i) {
+    const Axis& ax = *g.axes()[i];
+    if (ax.state() == AxisState::ErrorStop) return groupError(k, g, Error::AgAxisError, ax.error(), nowNs, cycle);
+    // A single-axis command took a member from the moving group (CODESYS: group error).
+    if ((g.active || g.pending) && g.gens.size() == g.axes().size() && ax.controller != &memberSlot(k, g, i))
+      return groupError(k, g, Error::AgInterruptedBySingleAxis, Error::None, nowNs, cycle);
+  }
+}
+
+}  // namespace stc::motion

@@ -1,0 +1,70 @@
+// Group motion: the commands that move an axis group's members together and
+// the group's part of the kernel step (docs/motion-groups.md, "Motion").
+//
+// A group command in control owns every member axis: the member runs a
+// DirectGenerator whose state the group writes in groupBeforeStep() from the
+// command's GroupMotion (joint space), before the axes are stepped.  Members
+// are in SynchronizedMotion while the group is GroupMoving.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "stdlib-motion/core/Trajectory.h"
+#include "stdlib-motion/group/AxisGroup.h"
+
+namespace stc::motion {
+
+// The joint set states of a group command over time (t: seconds since its start).
+class GroupMotion {
+public:
+  virtual ~GroupMotion() = default;
+  virtual void at(double t, Kinematic* q) const = 0;   // one state per member
+  virtual double duration() const = 0;
+};
+
+// Point to point: one profile per member, all ending at the same time.
+class PtpMotion : public GroupMotion {
+public:
+  std::vector<Profile> profiles;
+  double total = 0;
+  void at(double t, Kinematic* q) const override;
+  double duration() const override { return total; }
+};
+
+// Plans every member from `start` to `target` (at rest) under its limits; the members
+// whose own time-optimal plan is shorter are slowed down by time scaling (velocity x k,
+// acceleration x k^2, jerk x k^3 with k = their time / the longest time), so all arrive
+// together and keep their profile shape.  From a moving start each member keeps its own
+// time-optimal plan (ends at the latest member's time; docs/motion-groups.md).
+PlanStatus planPtp(const std::vector<Kinematic>& start, const std::vector<double>& target, const std::vector<Limits>& lim,
+                   PtpMotion& out);
+
+// MC_MoveDirectAbsolute / MC_MoveDirectRelative inputs (joint space), latched at the edge.
+struct DirectInputs {
+  double position[kMaxGroupAxes] = {};   // absolute targets, or distances when `relative`
+  bool relative = false;
+  double velFactor = 1, accFactor = 1, jerkFactor = 1;
+  BufferMode bufferMode = BufferMode::Aborting;
+  int transitionMode = 0;                // MC_TRANSITION_MODE (0 TMNone)
+};
+void callGroupMoveDirect(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const DirectInputs& in, const CallCtx& c);
+
+// MC_GroupHalt (group to Standby at rest) and MC_GroupStop (GroupStopping while Execute).
+struct GroupStopInputs {
+  double deceleration = 0, jerk = 0, accFactor = 1, jerkFactor = 1;
+};
+void callGroupHalt(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const GroupStopInputs& in, const CallCtx& c);
+void callGroupStop(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const GroupStopInputs& in, const CallCtx& c);
+
+// The group's parts of the kernel step: before the axes (start commands, write the
+// members' set states, completion and hand-over to the next command) and after them
+// (member errors, members taken by single-axis commands).
+void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle);
+void groupAfterStep(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle);
+
+// MC_GroupDisable: every group command ends (CommandAborted); moving members brake
+// with their own deceleration and are let go.
+void abortGroupMotion(Kernel& k, AxisGroup& g, const CallCtx& c);
+
+}  // namespace stc::motion
