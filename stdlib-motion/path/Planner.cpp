@@ -90,8 +90,20 @@ void Planner::pushEvent(uint32_t id, EventKind k, double t) {
   if (nEvents_ < static_cast<int>(events_.size())) events_[nEvents_++] = {id, k, t};
 }
 
+// Slots a and b (consecutive) belong to one run: equal rate and jerk limits, a
+// junction that does not stop, and velocity caps within 10 % of each other -- or
+// the faster slot is too short to use its higher cap (shorter than the way up to
+// it and back down).  A run is planned as one motion at its lowest cap
+// (docs/path.md, "Runs").
 bool Planner::sameLimits(const Slot& a, const Slot& b) const {
-  return a.vcap == b.vcap && a.acc == b.acc && a.dec == b.dec && a.jerk == b.jerk;
+  constexpr double kRunSpread = 0.9;
+  if (!(a.acc == b.acc && a.dec == b.dec && a.jerk == b.jerk && a.juncCap > 0)) return false;
+  const double lo = std::min({a.vcap, b.vcap, a.juncCap});
+  auto fits = [&](const Slot& x) {
+    if (x.vcap * kRunSpread <= lo) return true;
+    return x.geo.length() < 2 * transDist(lo, x.vcap, std::min(x.acc, x.dec), x.jerk);
+  };
+  return fits(a) && fits(b);
 }
 
 double Planner::remaining() const {
@@ -153,7 +165,10 @@ bool Planner::computeCaps(Slot& s) const {
   return s.vcap > 0 && s.acc > 0 && s.dec > 0;
 }
 
+// (len is shortened by a relative 1e-7 so that a plan is never exactly at the
+// limit: the 1-D planner's rounding must not turn it into a tiny reversal.)
 double Planner::brakeReach(double vEnd, double len, double dec, double jerk, double vcap) const {
+  len *= 1 - 1e-7;
   if (transDist(vcap, vEnd, dec, jerk) <= len) return vcap;
   if (jerk <= 0) return std::min(vcap, std::sqrt(vEnd * vEnd + 2 * dec * len));
   double lo = vEnd, hi = vcap;
@@ -166,6 +181,7 @@ double Planner::brakeReach(double vEnd, double len, double dec, double jerk, dou
 }
 
 double Planner::accelReach(double v0, double len, double acc, double jerk, double vcap) const {
+  len *= 1 - 1e-7;
   if (transDist(v0, vcap, acc, jerk) <= len) return vcap;
   if (jerk <= 0) return std::min(vcap, std::sqrt(v0 * v0 + 2 * acc * len));
   double lo = v0, hi = vcap;
@@ -185,30 +201,32 @@ void Planner::backwardPass(int from) {
   Slot& tail = at(count_ - 1);
   tail.vEndMax = 0;
   tail.juncCap = 0;
-  double runEndV = 0, runLen = 0;
+  double runEndV = 0, runLen = 0, runMin = 0;
   for (int k = count_ - 2; k >= 0; --k) {
     const Slot& nx = at(k + 1);
-    const bool boundary = (k + 1 == count_ - 1) || !(sameLimits(nx, at(k + 2)) && nx.juncCap >= nx.vcap);
+    const bool boundary = (k + 1 == count_ - 1) || !sameLimits(nx, at(k + 2));
     if (boundary) {
       runEndV = nx.vEndMax;
       runLen = nx.geo.length();
+      runMin = nx.vcap;
     } else {
       runLen += nx.geo.length();
+      runMin = std::min({runMin, nx.vcap, nx.juncCap});
     }
     Slot& s = at(k);
-    const double reach = brakeReach(runEndV, runLen, nx.dec, nx.jerk, nx.vcap);
-    const double nv = std::min(s.juncCap, reach);
+    const double reach = brakeReach(std::min(runEndV, runMin), runLen, nx.dec, nx.jerk, runMin);
+    const double nv = std::min({s.juncCap, runMin, reach});
     const double old = s.vEndMax;
     s.vEndMax = nv;
     ++backSteps_;
-    if (k < from && nv == old && (boundary || reach >= nx.vcap)) break;
+    if (k < from && nv == old && (boundary || reach >= runMin)) break;
   }
 }
 
 // ---------------------------------------------------------------- planning
 
 bool Planner::valid(const Profile& p) const {
-  const double tol = 1e-9 * std::max(1.0, std::fabs(p.start().v) + std::fabs(p.end().v));
+  const double tol = 1e-7 * std::max(1.0, std::fabs(p.start().v) + std::fabs(p.end().v));
   for (int i = 0; i < p.segmentCount(); ++i) {
     const auto& g = p.segment(i);
     if (g.v < -tol) return false;
@@ -234,14 +252,18 @@ bool Planner::planRun(const Kinematic& st, int& runEnd, Profile& out) {
   const Slot& h = at(0);
   const double s = st.p;
   int e = 0;
-  while (e + 1 < count_ && sameLimits(at(e), at(e + 1)) && at(e).juncCap >= h.vcap) ++e;
+  double vel = h.vcap;
+  while (e + 1 < count_ && sameLimits(at(e), at(e + 1))) {
+    vel = std::min({vel, at(e).juncCap, at(e + 1).vcap});
+    ++e;
+  }
   double target = h.geo.length() - s;
   for (int i = 1; i <= e; ++i) target += at(i).geo.length();
   if (!(target > 0)) target = 0;
-  const Limits lim{h.vcap, h.acc, h.dec, h.jerk};
-  double vEnd = std::min(at(e).vEndMax, h.vcap);
+  const Limits lim{vel, h.acc, h.dec, h.jerk};
+  double vEnd = std::min(at(e).vEndMax, vel);
   const double v0 = std::max(0.0, st.v);
-  if (st.a == 0 && v0 <= h.vcap) vEnd = std::min(vEnd, accelReach(v0, target, h.acc, h.jerk, h.vcap));
+  if (st.a == 0 && v0 <= vel) vEnd = std::min(vEnd, accelReach(v0, target, h.acc, h.jerk, vel));
   Profile p;
   bool ok = planPosition({0, v0, st.a}, target, vEnd, lim, p) == PlanStatus::Ok && valid(p);
   if (!ok) {
