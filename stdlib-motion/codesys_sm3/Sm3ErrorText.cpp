@@ -139,6 +139,9 @@ constexpr uint16_t kSmcNumbers[] = {
     0x710F,  // AgAxisLimitsMissing: SMC_AG_AXIS_LIMITS_MISSING
     0x7110,  // AgInvalidMoveInputs: SMC_AG_INVALID_MOVE_INPUTS
     0x7111,  // AgBlendingNotSupported: SMC_AG_BLENDING_NOT_SUPPORTED
+    0x7112,  // AgInvalidGeometry: SMC_AG_INVALID_GEOMETRY
+    0x7113,  // AgTransitionNotAllowed: SMC_AG_TRANSITION_NOT_ALLOWED
+    0x7114,  // AgModeChangeWhileMoving: SMC_AG_MODE_CHANGE_WHILE_MOVING
 };
 static_assert(sizeof(kSmcNumbers) / sizeof(kSmcNumbers[0]) == static_cast<size_t>(Error::Count_), "one SMC_ERROR per core fault");
 
@@ -382,6 +385,9 @@ const ErrorText kErrors[] = {
   {28943, "SMC_AG_AXIS_LIMITS_MISSING", "a member axis has no fMaxVelocity / fMaxAcceleration for group moves (stc)"},
   {28944, "SMC_AG_INVALID_MOVE_INPUTS", "a position, factor or dynamic input is not finite or out of range (stc)"},
   {28945, "SMC_AG_BLENDING_NOT_SUPPORTED", "this group move has no transition element for a blending buffer mode (stc)"},
+  {28946, "SMC_AG_INVALID_GEOMETRY", "the path is degenerate (zero length, collinear circle points, radius below half the chord, not finite) (stc)"},
+  {28947, "SMC_AG_TRANSITION_NOT_ALLOWED", "a transition mode other than TMNone needs a blending buffer mode (stc)"},
+  {28948, "SMC_AG_MODE_CHANGE_WHILE_MOVING", "a moving path move cannot be aborted by a PTP move, nor the reverse (MC_GroupHalt first) (stc)"},
 };
 
 const ErrorText* find(uint16_t id) {

@@ -2,6 +2,8 @@
 // an AXIS_GROUP_REF_SM3 to its kernel group, the administration FBs and the
 // group readers.  The semantics live in stdlib-motion/group.
 #include "stdlib-motion/codesys_sm3/Sm3Face.h"
+#include <cmath>
+
 #include "stdlib-motion/group/GroupMotion.h"
 
 using namespace stc::motion;
@@ -90,6 +92,72 @@ void moveDirect(T* self, const sm3::SMC_POS_REF& pos, bool relative) {
 }
 void MC_MoveDirectAbsolute(sm3::MC_MoveDirectAbsolute* self) { moveDirect(self, self->Position, false); }
 void MC_MoveDirectRelative(sm3::MC_MoveDirectRelative* self) { moveDirect(self, self->Distance, true); }
+
+// Path moves: the coordinates are the members' positions (v[i] of SMC_POS_REF: .c.X, .c.Y ...
+// or .a.a0 ... in every coordinate system while the group has no kinematics).
+template <class T>
+PathInputs pathInputs(const T* self, const AxisGroup& g) {
+  PathInputs in;
+  in.spec.dyn = path::Dynamics{self->Velocity, self->Acceleration, self->Deceleration, self->Jerk};
+  in.bufferMode = bufferModeOf(self->BufferMode);
+  in.transitionMode = self->TransitionMode;
+  in.spec.transitionParam = self->TransitionParameter[0];
+  in.velFactor = self->VelFactor;
+  in.accFactor = self->AccFactor;
+  in.jerkFactor = self->JerkFactor;
+  (void)g;
+  return in;
+}
+template <class T>
+void moveLinear(T* self, const sm3::SMC_POS_REF& pos, bool relative) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    PathInputs in = pathInputs(self, g);
+    in.spec.kind = path::MoveKind::Line;
+    in.spec.relative = relative || self->CoordSystem == 5;   // TCS: relative to the start
+    for (size_t i = 0; i < g.axes().size(); ++i) in.spec.end[i] = pos.v[i];
+    callGroupMovePath(k, fb, g, self->Execute, in, c);
+  });
+}
+void MC_MoveLinearAbsolute(sm3::MC_MoveLinearAbsolute* self) { moveLinear(self, self->Position, false); }
+void MC_MoveLinearRelative(sm3::MC_MoveLinearRelative* self) { moveLinear(self, self->Distance, true); }
+
+// Circles in the X/Y plane of the first two members (plus helical / linear motion of the
+// others): BORDER through AuxPoint; CENTER with AuxPoint[0..1] = the centre's offset from
+// the start (manual: AuxPoint[1], [2] with 1-based numbering); RADIUS with AuxPoint[0] =
+// the radius.  PathChoice 0 clockwise, 1 counter-clockwise (ignored by BORDER).
+template <class T>
+void moveCircular(T* self, bool relative) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    PathInputs in = pathInputs(self, g);
+    const bool rel = relative || self->CoordSystem == 5;
+    in.spec.relative = rel;
+    for (size_t i = 0; i < g.axes().size(); ++i) in.spec.end[i] = self->EndPoint.v[i];
+    in.spec.ccw = self->PathChoice == 1;
+    switch (self->CircMode) {
+      case 0:   // BORDER
+        in.spec.kind = path::MoveKind::ArcBorder;
+        for (size_t i = 0; i < g.axes().size(); ++i) in.spec.aux[i] = self->AuxPoint.v[i];
+        break;
+      case 1:   // CENTER: an offset from the start point, in both the absolute and relative FB
+        in.spec.kind = path::MoveKind::ArcCenter;
+        in.spec.aux = path::Vec{};
+        in.spec.aux[0] = self->AuxPoint.v[0];
+        in.spec.aux[1] = self->AuxPoint.v[1];
+        in.spec.centerRelative = true;
+        break;
+      case 2:   // RADIUS
+        in.spec.kind = path::MoveKind::ArcRadius;
+        in.spec.radius = std::fabs(self->AuxPoint.v[0]);
+        in.spec.longArc = self->AuxPoint.v[0] < 0;   // a negative radius: the arc of more than half a turn
+        break;
+      default:
+        return k.fail(fb, Error::AgInvalidMoveInputs, c);
+    }
+    callGroupMovePath(k, fb, g, self->Execute, in, c);
+  });
+}
+void MC_MoveCircularAbsolute(sm3::MC_MoveCircularAbsolute* self) { moveCircular(self, false); }
+void MC_MoveCircularRelative(sm3::MC_MoveCircularRelative* self) { moveCircular(self, true); }
 
 template <class T>
 GroupStopInputs stopInputs(const T* self) {
@@ -188,6 +256,10 @@ void registerSm3GroupNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(MC_MoveDirectAbsolute, MC_MoveDirectAbsolute)
   STC_SM3_NATIVE(MC_MoveDirectRelative, MC_MoveDirectRelative)
   STC_SM3_NATIVE(MC_GroupHalt, MC_GroupHalt)
+  STC_SM3_NATIVE(MC_MoveLinearAbsolute, MC_MoveLinearAbsolute)
+  STC_SM3_NATIVE(MC_MoveLinearRelative, MC_MoveLinearRelative)
+  STC_SM3_NATIVE(MC_MoveCircularAbsolute, MC_MoveCircularAbsolute)
+  STC_SM3_NATIVE(MC_MoveCircularRelative, MC_MoveCircularRelative)
   STC_SM3_NATIVE(MC_GroupStop, MC_GroupStop)
 }
 

@@ -73,6 +73,8 @@ FaultClass faultClass(Error e) {
     case Error::AgAxisNotServo:
     case Error::AgAxisLimitsMissing:
     case Error::AgInvalidMoveInputs:
+    case Error::AgInvalidGeometry:
+    case Error::AgTransitionNotAllowed:
       return FaultClass::InvalidParameter;
     case Error::RegulatorOrStartNotSet:
     case Error::WrongControllerMode:
@@ -109,6 +111,7 @@ FaultClass faultClass(Error e) {
     case Error::AgSingleAxisActive:
     case Error::AgInterruptedBySingleAxis:
     case Error::AgBlendingNotSupported:
+    case Error::AgModeChangeWhileMoving:
       return FaultClass::WrongState;
     case Error::BufferFull:
       return FaultClass::QueueFull;

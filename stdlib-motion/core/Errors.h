@@ -144,6 +144,9 @@ enum class Error : uint16_t {
   AgAxisLimitsMissing,    // PTP: a member without fMaxVelocity / fMaxAcceleration
   AgInvalidMoveInputs,    // a position, distance, factor or dynamic value out of range
   AgBlendingNotSupported, // a blending buffer mode where the move has no transition
+  AgInvalidGeometry,      // a path move whose geometry is degenerate (docs/path.md)
+  AgTransitionNotAllowed, // a transition mode with Buffered / Aborting
+  AgModeChangeWhileMoving,   // aborting a moving path move by a PTP move, or the reverse
   Count_,   // the number of faults (not a fault)
 };
 

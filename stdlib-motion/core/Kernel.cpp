@@ -644,7 +644,7 @@ void Kernel::cycle(uint32_t task, int64_t nowNs, int64_t intervalNs, uint64_t cy
   // follows one sees its value of this cycle, whatever the order of the axes.
   // Groups first write their members' set states of this cycle.
   for (auto& g : groups_)
-    if (g->task == task) groupBeforeStep(*this, *g, nowNs, cycle);
+    if (g->task == task) groupBeforeStep(*this, *g, nowNs, intervalNs, cycle);
   stepped_.assign(axes_.size(), 0);
   for (Axis* a : encoders_)
     if (a->task == task) {

@@ -6,8 +6,12 @@
 
 #include "stdlib-motion/core/Kernel.h"
 #include "stdlib-motion/group/GroupMotion.h"
+#include "stdlib-motion/path/Planner.h"
 
 namespace stc::motion {
+
+AxisGroup::AxisGroup(uint32_t index) : index_(index) {}
+AxisGroup::~AxisGroup() = default;
 
 int AxisGroup::identOf(const Axis& ax) const {
   for (size_t i = 0; i < axes_.size(); ++i)
@@ -44,6 +48,7 @@ void callAddAxisToGroup(Kernel& k, FbSlot& fb, AxisGroup& g, Axis& ax, bool exec
   if (g.identOf(ax) >= 0) return k.fail(fb, Error::AgAxisAlreadyInGroup, c);
   if (g.axes().size() >= kMaxGroupAxes) return k.fail(fb, Error::AgTooManyAxes, c);
   g.addAxis(ax);
+  g.planner.reset();   // planned for the old members
   done(k, fb, c);
 }
 
@@ -52,6 +57,7 @@ void callRemoveAxisFromGroup(Kernel& k, FbSlot& fb, AxisGroup& g, Axis& ax, bool
   if (g.enabled()) return k.fail(fb, Error::AgNotDisabled, c);
   if (g.identOf(ax) < 0) return k.fail(fb, Error::AgAxisNotInGroup, c);
   g.removeAxis(ax);
+  g.planner.reset();
   done(k, fb, c);
 }
 
@@ -59,6 +65,7 @@ void callUngroupAllAxes(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const
   if (!k.beginExecute(fb, execute, c)) return fb.sync();
   if (g.enabled()) return k.fail(fb, Error::AgNotDisabled, c);
   g.clearAxes();
+  g.planner.reset();
   done(k, fb, c);
 }
 

@@ -23,6 +23,9 @@ class Kernel;
 struct CallCtx;
 class GroupMotion;
 class DirectGenerator;
+namespace path {
+class Planner;
+}
 
 // SMC_AXIS_GROUP_STATE; the numbering is stc's (the manuals list the names only).
 enum class GroupState : uint8_t { Disabled = 0, Standby = 1, Moving = 2, Homing = 3, Stopping = 4, ErrorStop = 5 };
@@ -32,7 +35,8 @@ inline constexpr size_t kMaxGroupAxes = 9;
 
 class AxisGroup {
 public:
-  explicit AxisGroup(uint32_t index) : index_(index) {}
+  explicit AxisGroup(uint32_t index);
+  ~AxisGroup();
 
   uint32_t index() const { return index_; }
   GroupState state() const { return state_; }
@@ -62,6 +66,14 @@ public:
   bool ended = false;                  // the last command ended: GroupStandby in the next step
   std::vector<std::shared_ptr<DirectGenerator>> gens;   // per member while the group moves
   uint64_t memberHandles[kMaxGroupAxes] = {};            // kernel slots standing for the group on its members
+  // Path moves (MC_MoveLinear*, MC_MoveCircular*) run on the path planner (stdlib-motion/path),
+  // created for the members at the first path move; each queued move is one planner id.
+  std::unique_ptr<path::Planner> planner;
+  std::vector<std::pair<uint32_t, FbSlot*>> pathCommands;
+  // A path started from rest in a call of cycle N begins at that cycle's time: the step of
+  // cycle N samples it at t = 0 and shows Active (as every group move: Active in N + 1).
+  uint64_t pathStartCycle = 0;
+  std::vector<uint32_t> startedInCall;   // Started events of a call, shown by the next step
 
   // ---- state machine (used by the group instructions and the kernel step)
   void addAxis(Axis& ax) { axes_.push_back(&ax); }

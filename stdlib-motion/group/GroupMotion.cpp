@@ -45,9 +45,11 @@ namespace {
 
 // The data of one group command (the FB slot's behaviour).
 struct GroupCommand : FbBehaviour {
-  enum class Kind : uint8_t { Direct, Halt, Stop } kind = Kind::Direct;
+  enum class Kind : uint8_t { Direct, Halt, Stop, Path } kind = Kind::Direct;
   DirectInputs direct;
   GroupStopInputs stop;
+  PathInputs path;
+  std::vector<path::Vec> splinePoints;   // the spec's points refer to these
   void start(Kernel&, FbSlot&, Axis&, int64_t) override {}   // groups start commands themselves
 };
 
@@ -120,8 +122,14 @@ void endCommands(Kernel& k, AxisGroup& g, const CallCtx* c, uint64_t cycle, Erro
   end(g.pending);
   end(g.active);
   for (FbSlot* q : g.queue) end(q);
+  for (auto& [id, fb] : g.pathCommands) end(fb);
   g.pending = g.active = nullptr;
   g.queue.clear();
+  g.pathCommands.clear();
+  if (g.planner) {
+    g.planner->clear();
+    g.planner->clearEvents();
+  }
   g.motion.reset();
 }
 
@@ -167,6 +175,8 @@ Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs) {
     Kinematic q[kMaxGroupAxes];
     g.lastMotion->at(static_cast<double>(nowNs - g.lastOriginNs) * 1e-9, q);
     std::copy(q, q + start.size(), start.begin());
+  } else if (controlsMembers(k, g)) {   // after a path move: the state written last
+    for (size_t i = 0; i < start.size(); ++i) start[i] = g.gens[i]->state;
   } else {
     for (size_t i = 0; i < start.size(); ++i) start[i] = g.axes()[i]->set();
   }
@@ -236,7 +246,148 @@ void followExecute(FbSlot& fb, bool execute) {
   }
 }
 
+// ---- path moves
+
+bool pathMode(const AxisGroup& g) { return g.planner && (!g.pathCommands.empty() || g.planner->sample().moving); }
+bool ptpBusy(const AxisGroup& g) {
+  if (g.pending || g.active) return true;
+  for (const FbSlot* q : g.queue)
+    if (q->behaviour && static_cast<const GroupCommand&>(*q->behaviour).kind != GroupCommand::Kind::Path) return true;
+  return false;
+}
+
+// The members' exact present state (for a planner start or a PTP after a path).
+std::vector<Kinematic> presentStates(Kernel& k, AxisGroup& g, int64_t nowNs) {
+  std::vector<Kinematic> s(g.axes().size());
+  if (g.lastMotion && controlsMembers(k, g)) {
+    Kinematic q[kMaxGroupAxes];
+    g.lastMotion->at(static_cast<double>(nowNs - g.lastOriginNs) * 1e-9, q);
+    std::copy(q, q + s.size(), s.begin());
+  } else if (controlsMembers(k, g)) {
+    for (size_t i = 0; i < s.size(); ++i) s[i] = g.gens[i]->state;
+  } else {
+    for (size_t i = 0; i < s.size(); ++i) s[i] = g.axes()[i]->set();
+  }
+  return s;
+}
+
+path::Planner& plannerOf(AxisGroup& g) {
+  if (!g.planner) {
+    path::PlannerConfig pc;
+    pc.dims = static_cast<int>(g.axes().size());
+    // The members' velocity and acceleration limits bound the path (when every member has them).
+    bool all = true;
+    for (const Axis* ax : g.axes()) all = all && ax->config().maxVelocity > 0 && ax->config().maxAcceleration > 0;
+    if (all) {
+      pc.axes.count = pc.dims;
+      for (size_t i = 0; i < g.axes().size(); ++i) {
+        pc.axes.vel[i] = g.axes()[i]->config().maxVelocity;
+        pc.axes.acc[i] = g.axes()[i]->config().maxAcceleration;
+      }
+    }
+    g.planner = std::make_unique<path::Planner>(pc);
+  }
+  return *g.planner;
+}
+
+Error pathError(const path::AppendResult& r) {
+  switch (r.status) {
+    case path::PathStatus::Ok: return Error::None;
+    case path::PathStatus::QueueFull: return Error::BufferFull;
+    case path::PathStatus::InvalidGeometry: return Error::AgInvalidGeometry;
+    case path::PathStatus::BlendingNeedsTransition: return Error::AgBlendingNotSupported;
+    case path::PathStatus::TransitionNotAllowed: return Error::AgTransitionNotAllowed;
+    default: return Error::AgInvalidMoveInputs;
+  }
+}
+
+// Hands fb's path move to the planner (from the members' present state when it is idle).
+Error appendPath(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, uint64_t cycle) {
+  path::Planner& p = plannerOf(g);
+  GroupCommand& cmd = commandOf(fb);
+  if (!pathMode(g)) {
+    g.pathStartCycle = cycle;
+    const std::vector<Kinematic> s = presentStates(k, g, nowNs);
+    path::Vec pos{};
+    for (size_t i = 0; i < s.size(); ++i) pos[i] = s[i].p;
+    p.clear();
+    p.setPosition(pos);
+  }
+  path::MoveSpec spec = cmd.path.spec;
+  spec.points = cmd.splinePoints;
+  const path::AppendResult r = p.append(spec);
+  if (Error e = pathError(r); e != Error::None) return e;
+  g.pathCommands.push_back({r.id, &fb});
+  takeMembers(k, g, nowNs);
+  g.lastMotion.reset();
+  g.ended = false;
+  g.setState(GroupState::Moving);
+  return Error::None;
+}
+
+// The planner's events of this step or call: Active, Done, CommandAborted of the path FBs.
+void drainPathEvents(Kernel& k, AxisGroup& g, const CallCtx* c, uint64_t cycle) {
+  if (!g.planner) return;
+  std::vector<path::Event> events(g.planner->events().begin(), g.planner->events().end());
+  g.planner->clearEvents();
+  if (!c) {   // a step: first the moves started by calls of this cycle
+    for (uint32_t id : g.startedInCall) events.insert(events.begin(), path::Event{id, path::EventKind::Started, 0});
+    g.startedInCall.clear();
+  }
+  for (const path::Event& e : events) {
+    auto it = std::find_if(g.pathCommands.begin(), g.pathCommands.end(), [&](const auto& pc) { return pc.first == e.id; });
+    if (it == g.pathCommands.end()) continue;
+    FbSlot& fb = *it->second;
+    if (e.kind == path::EventKind::Started && c) {   // in a call: Active from the step on
+      g.startedInCall.push_back(e.id);
+      continue;
+    }
+    if (e.kind == path::EventKind::Started) {
+      fb.out.active = true;
+      g.activeMovementId = fb.out.movementId;
+      fb.sync();
+      continue;
+    }
+    g.pathCommands.erase(it);
+    fb.out.active = false;
+    const bool stop = commandOf(fb).kind == GroupCommand::Kind::Stop;
+    k.finish(fb, c, cycle, e.kind == path::EventKind::Done, e.kind == path::EventKind::Aborted, Error::None);
+    // MC_GroupStop holds GroupStopping until its Execute falls (callGroupBrake).
+    if (stop) g.setState(fb.execute ? GroupState::Stopping : GroupState::Moving);
+  }
+}
+
 }  // namespace
+
+void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const PathInputs& in, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return followExecute(fb, execute);
+  fb.out.commandAccepted = false;
+  auto factor = [](double f) { return std::isfinite(f) && f > 0 && f <= 1; };
+  if (!factor(in.velFactor) || !factor(in.accFactor) || !factor(in.jerkFactor)) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  if (!validBufferMode(in.bufferMode) || in.transitionMode < 0 || in.transitionMode > 4) return k.fail(fb, Error::InvalidBufferMode, c);
+  if (Error e = motionRefusal(k, g); e != Error::None) {
+    if (e == Error::AgSingleAxisActive) groupError(k, g, e, Error::None, c.nowNs, c.cycle);
+    return k.fail(fb, e, c);
+  }
+  GroupCommand& cmd = commandOf(fb);
+  cmd.kind = GroupCommand::Kind::Path;
+  cmd.path = in;
+  cmd.path.spec.buffer = static_cast<path::BufferMode>(in.bufferMode);
+  cmd.path.spec.transition = static_cast<path::TransitionMode>(in.transitionMode);
+  cmd.splinePoints.assign(in.spec.points.begin(), in.spec.points.end());
+  fb.axis = nullptr;
+  if (ptpBusy(g)) {
+    // Behind a PTP move: buffered until it ends; aborting a moving PTP move by a path move
+    // needs a stop first (docs/motion-groups.md).
+    if (in.bufferMode == BufferMode::Aborting) return k.fail(fb, Error::AgModeChangeWhileMoving, c);
+    if (g.queue.size() >= k.profile.queueCapacity) return k.fail(fb, Error::BufferFull, c);
+    g.queue.push_back(&fb);
+    return accepted(g, fb);
+  }
+  if (Error e = appendPath(k, g, fb, c.nowNs, c.cycle); e != Error::None) return k.fail(fb, e, c);
+  accepted(g, fb);
+  drainPathEvents(k, g, &c, c.cycle);   // Aborting: the replaced moves end in this call
+}
 
 void callGroupMoveDirect(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const DirectInputs& in, const CallCtx& c) {
   if (!k.beginExecute(fb, execute, c)) return followExecute(fb, execute);
@@ -260,6 +411,13 @@ void callGroupMoveDirect(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, cons
   cmd.kind = GroupCommand::Kind::Direct;
   cmd.direct = in;
   fb.axis = nullptr;
+  if (pathMode(g)) {
+    // Behind path moves: buffered until the path ends; a moving path is not aborted by a PTP move.
+    if (in.bufferMode == BufferMode::Aborting) return k.fail(fb, Error::AgModeChangeWhileMoving, c);
+    if (g.queue.size() >= k.profile.queueCapacity) return k.fail(fb, Error::BufferFull, c);
+    g.queue.push_back(&fb);
+    return accepted(g, fb);
+  }
   const bool idle = !g.pending && !g.active && g.queue.empty();
   if (in.bufferMode == BufferMode::Aborting || idle) {
     // The running and buffered commands end now; fb starts in this cycle's step.
@@ -297,6 +455,16 @@ void callGroupBrake(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Gro
   cmd.kind = kind;
   cmd.stop = in;
   fb.axis = nullptr;
+  if (pathMode(g)) {
+    // On the path: the planner brakes along it; every queued move (and PTP behind it) ends.
+    for (FbSlot* q : g.queue) k.finish(*q, &c, c.cycle, false, true, Error::None);
+    g.queue.clear();
+    const uint32_t id = g.planner->halt(in.deceleration * in.accFactor, in.jerk * in.jerkFactor);
+    drainPathEvents(k, g, &c, c.cycle);
+    g.pathCommands.push_back({id, &fb});
+    g.setState(kind == GroupCommand::Kind::Stop ? GroupState::Stopping : GroupState::Moving);
+    return accepted(g, fb);
+  }
   endCommands(k, g, &c, c.cycle, Error::None);
   g.pending = &fb;
   accepted(g, fb);
@@ -312,7 +480,50 @@ void callGroupStop(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Grou
   callGroupBrake(k, fb, g, execute, in, c, GroupCommand::Kind::Stop);
 }
 
-void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
+namespace {
+
+// After a command ended: the next buffered one starts from this instant; consecutive
+// path moves go to the planner together.  Nothing left: GroupStandby in the next step.
+void startQueued(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
+  if (g.queue.empty()) {
+    g.ended = true;
+    return;
+  }
+  FbSlot* next = g.queue.front();
+  if (commandOf(*next).kind != GroupCommand::Kind::Path) {
+    g.queue.erase(g.queue.begin());
+    if (Error e = startCommand(k, g, *next, nowNs); e != Error::None) {
+      k.finish(*next, nullptr, cycle, false, false, e);
+      groupError(k, g, e, Error::None, nowNs, cycle);
+    }
+    return;
+  }
+  while (!g.queue.empty() && commandOf(*g.queue.front()).kind == GroupCommand::Kind::Path) {
+    FbSlot* p = g.queue.front();
+    g.queue.erase(g.queue.begin());
+    if (Error e = appendPath(k, g, *p, nowNs, cycle); e != Error::None) k.finish(*p, nullptr, cycle, false, false, e);
+  }
+  if (!pathMode(g)) g.ended = true;
+}
+
+void stepPath(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64_t cycle) {
+  // The move in control must be called in every cycle until it ends (error 30).
+  for (const auto& [id, fb] : g.pathCommands)
+    if (fb->out.active && fb->lastCallCycle != cycle && commandOf(*fb).kind != GroupCommand::Kind::Stop)
+      return groupError(k, g, Error::FbWasntCalledDuringMotion, Error::None, nowNs, cycle);
+  const double dt = cycle == g.pathStartCycle ? 0.0 : static_cast<double>(intervalNs) * 1e-9;
+  const path::Sample& s = g.planner->advance(dt);
+  for (size_t i = 0; i < g.axes().size() && i < g.gens.size(); ++i) {
+    g.gens[i]->state = Kinematic{s.pos[i], s.vel[i], s.acc[i]};
+    g.gens[i]->tSet = g.axes()[i]->movement().t(nowNs);
+  }
+  drainPathEvents(k, g, nullptr, cycle);
+  if (!pathMode(g) && g.state() != GroupState::Stopping) startQueued(k, g, nowNs, cycle);
+}
+
+}  // namespace
+
+void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64_t cycle) {
   if (!g.enabled() || g.state() == GroupState::ErrorStop) return;
   // The last command ended in the previous step: the group stands (one cycle after the
   // last position change, as CODESYS).
@@ -329,6 +540,7 @@ void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
       return groupError(k, g, e, Error::None, nowNs, cycle);
     }
   }
+  if (pathMode(g)) return stepPath(k, g, nowNs, intervalNs, cycle);
   if (!g.active || !g.motion) return;
   // The command in control must be called in every cycle until it ends (error 30).
   if (g.active->lastCallCycle != cycle) return groupError(k, g, Error::FbWasntCalledDuringMotion, Error::None, nowNs, cycle);
@@ -356,16 +568,7 @@ void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
     return;
   }
   k.finish(*done, nullptr, cycle, true, false, Error::None);
-  if (!g.queue.empty()) {
-    FbSlot* next = g.queue.front();
-    g.queue.erase(g.queue.begin());
-    if (Error e = startCommand(k, g, *next, nowNs); e != Error::None) {
-      k.finish(*next, nullptr, cycle, false, false, e);
-      groupError(k, g, e, Error::None, nowNs, cycle);
-    }
-    return;
-  }
-  g.ended = true;
+  startQueued(k, g, nowNs, cycle);
 }
 
 void abortGroupMotion(Kernel& k, AxisGroup& g, const CallCtx& c) {

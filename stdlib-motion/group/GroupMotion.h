@@ -12,6 +12,7 @@
 
 #include "stdlib-motion/core/Trajectory.h"
 #include "stdlib-motion/group/AxisGroup.h"
+#include "stdlib-motion/path/Planner.h"
 
 namespace stc::motion {
 
@@ -50,6 +51,16 @@ struct DirectInputs {
 };
 void callGroupMoveDirect(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const DirectInputs& in, const CallCtx& c);
 
+// MC_MoveLinear* / MC_MoveCircular*: a path move (coordinates = the members' positions
+// while the group has no kinematics), latched at the edge.
+struct PathInputs {
+  path::MoveSpec spec;
+  BufferMode bufferMode = BufferMode::Aborting;   // checked, then mapped to spec.buffer
+  int transitionMode = 0;                         // MC_TRANSITION_MODE, mapped to spec.transition
+  double velFactor = 1, accFactor = 1, jerkFactor = 1;
+};
+void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const PathInputs& in, const CallCtx& c);
+
 // MC_GroupHalt (group to Standby at rest) and MC_GroupStop (GroupStopping while Execute).
 struct GroupStopInputs {
   double deceleration = 0, jerk = 0, accFactor = 1, jerkFactor = 1;
@@ -60,7 +71,7 @@ void callGroupStop(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Grou
 // The group's parts of the kernel step: before the axes (start commands, write the
 // members' set states, completion and hand-over to the next command) and after them
 // (member errors, members taken by single-axis commands).
-void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle);
+void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64_t cycle);
 void groupAfterStep(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle);
 
 // MC_GroupDisable: every group command ends (CommandAborted); moving members brake

@@ -336,7 +336,12 @@ GeoStatus Planner::buildGeometry(const MoveSpec& m, const Vec& start, const Vec*
     case MoveKind::Line: return Segment::line(start, end, dims_, scratchSegs_[0]);
     case MoveKind::ArcBorder: return Segment::arcBorder(start, rel(m.aux), end, m.normal, dims_, scratchSegs_[0]);
     case MoveKind::ArcCenter:
-      return Segment::arcCenter(start, rel(m.aux), end, m.normal, m.ccw, m.turns, dims_, scratchSegs_[0]);
+    {
+      Vec centre = rel(m.aux);
+      if (m.centerRelative && !m.relative)
+        for (int i = 0; i < dims_; ++i) centre[i] = start[i] + m.aux[i];
+      return Segment::arcCenter(start, centre, end, m.normal, m.ccw, m.turns, dims_, scratchSegs_[0]);
+    }
     case MoveKind::ArcRadius:
       return Segment::arcRadius(start, end, m.radius, m.normal, m.ccw, m.longArc, m.turns, dims_, scratchSegs_[0]);
     case MoveKind::Ellipse:

@@ -45,6 +45,8 @@ struct MoveSpec {
   bool relative = false;     // end, aux and points relative to the move's start point
   Vec end{};                 // end point, all coordinates (not used by Spline)
   Vec aux{};                 // ArcBorder: the border point; ArcCenter / Ellipse: the centre
+  bool centerRelative = false;   // ArcCenter: aux is the centre's offset from the start even when
+                                 // the end is absolute (MC_MoveCircularAbsolute, CircMode CENTER)
   double radius = 0;         // ArcRadius
   bool longArc = false;      // ArcRadius: the arc of more than half a turn
   Vec normal{0, 0, 1};       // arcs, ellipses: plane normal (right-hand rule for ccw)
