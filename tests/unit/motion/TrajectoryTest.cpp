@@ -176,6 +176,8 @@ TEST(Trajectory, SamplingAndEnd) {
 
 struct RefTrans {
   double T, D;
+  double dir = 1;       // jerk-limited: +1 if v rises after a0 is removed
+  bool over = false;    // jerk-limited: the start acceleration is above the bound
 };
 
 // Simpson over one constant-jerk phase; returns the distance and advances v, a.
@@ -211,6 +213,7 @@ RefTrans refTrans(double u, double a0, double w, const Limits& lim, bool jerkMod
   else if (W <= 0) A = lim.dec;
   else A = std::min(lim.acc, lim.dec);
   double v = U, a = A0, d = 0, T = 0;
+  const bool over = A0 > A;
   if (A0 > A) {
     // down to A, hold, down to 0
     const double t1 = (A0 - A) / J;
@@ -234,7 +237,54 @@ RefTrans refTrans(double u, double a0, double w, const Limits& lim, bool jerkMod
     d += simpson(v, a, -J, t3);
     T = t1 + hold + t3;
   }
-  return {T, dir * d};
+  return {T, dir * d, dir, over};
+}
+
+// The eased plans (jerk-limited): the start acceleration a0 is first eased at
+// -sign(a0) J for te in [0, |a0| / J], then one transition hardens it again
+// towards vEnd (it must raise |v| on a0's side and start within its bound).
+// Grid over te plus bisection of every sign change; the fastest root.
+double referenceEased(const Kinematic& s, double target, double vEnd, const Limits& lim) {
+  const double J = lim.jerk, a0 = s.a, delta = target - s.p;
+  double best = kInf;
+  if (!(lim.jerk > 0 && std::isfinite(lim.jerk)) || a0 == 0) return best;
+  const double g = a0 > 0 ? 1 : -1, tm = std::fabs(a0) / J;
+  double mag = 0;
+  bool valid = true;
+  auto eval = [&](double te, double& T) {
+    double v = s.v, a = a0;
+    const double x = simpson(v, a, -g * J, te);
+    const RefTrans r = refTrans(v, a, vEnd, lim, true);
+    valid = r.dir == g && !r.over;
+    T = te + r.T;
+    mag = std::fabs(x) + std::fabs(r.D) + std::fabs(delta);
+    return x + r.D - delta;
+  };
+  constexpr int N = 400;
+  double prevF = 0, prevT = 0;
+  bool prevValid = false;
+  for (int i = 0; i <= N; ++i) {
+    const double te = tm * i / N;
+    double T;
+    const double f = eval(te, T);
+    const bool ok = valid;
+    if (ok && std::fabs(f) <= 1e-9 * mag) best = std::min(best, T);
+    if (ok && prevValid && ((f < 0) != (prevF < 0))) {
+      double lo = tm * (i - 1) / N, hi = te, flo = prevF;
+      for (int k = 0; k < 80; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        double Tm;
+        const double fm = eval(mid, Tm);
+        if ((fm < 0) == (flo < 0)) { lo = mid; flo = fm; } else hi = mid;
+      }
+      double Tl;
+      const double fl = eval(lo, Tl);
+      if (valid && std::fabs(fl) <= 1e-9 * mag) best = std::min(best, Tl);
+    }
+    prevF = f; prevT = T; prevValid = ok;
+  }
+  (void)prevT;
+  return best;
 }
 
 bool gRefDebug = false;
@@ -314,6 +364,7 @@ RefResult reference(const Kinematic& s, double target, double vEnd, const Limits
       }
     }
   }
+  best = std::min(best, referenceEased(s, target, vEnd, lim));
   return {best, gridBest};
 }
 
