@@ -62,16 +62,35 @@ SyncResult planSynchronized(const SyncAxis* axes, int n, Profile* out) {
       if (s[j] > tLow && nc < kCap) cand[nc++] = s[j];
   }
   std::sort(cand, cand + nc);
+  // the first candidate at which every axis has a plan (cheap test first)
   double T = cand[nc - 1];
   for (int c = 0; c < nc; ++c) {
     bool all = true;
     for (int i = 0; i < n && all; ++i) all = fam[i].feasible(cand[c]);
+    for (int i = 0; i < n && all; ++i) all = fam[i].plan(cand[c], out[i]);
     if (all) {
       T = cand[c];
       break;
     }
+    if (c == nc - 1) {
+      // G(vp) is not monotone on every piece, so an interval may begin between
+      // the candidates: go later (every axis' last interval is unbounded)
+      double t = cand[nc - 1];
+      for (int k = 0; k < 200 && !all; ++k) {
+        t = t * 1.0625 + 1e-9;
+        all = true;
+        for (int i = 0; i < n && all; ++i) all = fam[i].plan(t, out[i]);
+      }
+      T = t;
+      if (!all) {   // (not seen in the tests) the optimal plans, not synchronised
+        T = 0;
+        for (int i = 0; i < n; ++i) {
+          out[i] = fam[i].optimal();
+          T = std::max(T, fam[i].minimum());
+        }
+      }
+    }
   }
-  for (int i = 0; i < n; ++i) fam[i].plan(T, out[i]);
   res.duration = T;
   return res;
 }

@@ -649,7 +649,8 @@ PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd,
     inS_[i] = false;
     if (x_[i] == 0 && x_[i + 1] == 0) continue;
     const double side = x_[i] < 0 || (x_[i] == 0 && x_[i + 1] < 0) ? -1.0 : 1.0;   // (0 is a breakpoint)
-    const double fs = f_[i] != 0 ? f_[i] : f_[i + 1];
+    // (f has one sign inside a piece; an endpoint may be a root, f ~ 0 of either sign)
+    const double fs = std::fabs(f_[i]) >= std::fabs(f_[i + 1]) ? f_[i] : f_[i + 1];
     inS_[i] = side > 0 ? fs <= 0 : fs >= 0;
   }
   if (n_ > 0) inS_[n_ - 1] = false;
@@ -668,7 +669,9 @@ int TimedFamily::starts(double* out, int cap) const {
 }
 
 namespace {
-inline bool closeTo(double a, double b) { return std::fabs(a - b) <= 1e-12 * std::max(1.0, std::fabs(b)); }
+inline bool closeTo(double a, double b) {
+  return std::isfinite(b) && std::fabs(a - b) <= 1e-12 * std::max(1.0, std::fabs(b));
+}
 }  // namespace
 
 bool TimedFamily::feasible(double T) const {
@@ -720,7 +723,7 @@ bool TimedFamily::plan(double T, Profile& out) const {
     vp = solveRootOn(h, x_[i], hlo, x_[i + 1], hhi, z);
     side = vp != 0 ? 0 : z;
     double mag = 0;
-    found = !std::isnan(vp) && std::fabs(h(vp, nullptr, &mag, side)) <= 1e-10 * mag;
+    found = !std::isnan(vp) && std::fabs(h(vp, nullptr, &mag, side)) <= 1e-11 * mag;
   }
   if (!found) return false;
   Trans r1, r2;
@@ -736,6 +739,12 @@ bool TimedFamily::plan(double T, Profile& out) const {
   }
   pushTrans(out, r2, c.jerkMode);
   out.finish({target_, vEnd_, 0.0});
+  // (G is not always monotone between the points: a piece whose end values
+  // bracket T may not hold a plan of duration T)
+  if (!(std::fabs(out.duration() - T) <= 1e-10 * std::max(1.0, T))) {
+    out = opt_;
+    return false;
+  }
   return true;
 }
 

@@ -31,6 +31,7 @@ public:
 
   static constexpr int kMaxPoints = 16;
 
+
 private:
   // the problem
   Limits lim_;
