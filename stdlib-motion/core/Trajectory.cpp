@@ -617,6 +617,22 @@ PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd,
     zs_[k] = side;
     f_[k] = P.f(x, &tt_[k], nullptr, side);
   };
+  const double inf = std::numeric_limits<double>::infinity();
+  if (start.v == 0 && P.a0 == 0 && vEnd == 0 && delta_ != 0) {
+    // rest to rest: the durations are [minimum, inf), cruising at 0 < |vp| <= the
+    // optimal peak (G falls from inf to the minimum there)
+    double peak = 0;
+    for (int i = 0; i < opt_.segmentCount(); ++i) peak = std::max(peak, std::fabs(opt_.segment(i).v));
+    const double dir = delta_ > 0 ? 1.0 : -1.0;
+    if (dir > 0) { add(0.0, 1); add(peak, 0); }
+    else { add(-peak, 0); add(0.0, -1); }
+    const int k0 = dir > 0 ? 0 : 1;
+    g_[k0] = inf;
+    g_[1 - k0] = minimum();
+    inS_[0] = true;
+    inS_[1] = false;
+    return PlanStatus::Ok;
+  }
   add(-vel, 0);
   add(0.0, -1);
   add(0.0, 1);
@@ -640,7 +656,6 @@ PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd,
     }
   }
   // durations at the points and the pieces that admit a cruise
-  const double inf = std::numeric_limits<double>::infinity();
   for (int i = 0; i < n_; ++i) {
     const double x = x_[i];
     g_[i] = x == 0 ? inf : tt_[i] + std::max(0.0, -f_[i] / x);
