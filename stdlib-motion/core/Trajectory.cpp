@@ -42,11 +42,12 @@
 //  - A start with |v| > vel: the first transition goes to |vp| <= vel with the
 //    falling-speed bound; it never speeds up beyond vel (beyond |vNat| when a0 pushes).
 //
-// The model is not the unconstrained optimum of the jerk-limited problem: between
-// the transitions the acceleration passes through 0 at vp (a "touch" of a = 0),
-// which from a start with nonzero acceleration can be slower than a profile
-// without it (Ruckig-style UDUD profiles), and the min(acc, dec) rule is
-// conservative for crossing transitions.
+// Besides that shape, jerk-limited position plans from a start acceleration that
+// pushes towards vEnd's side of vNat are also searched in the "eased" shape (see
+// EaseProblem): the acceleration does not pass 0 at a velocity peak there, and
+// such plans can be much faster than any peak-velocity plan.  Rest-to-rest plans
+// are closed-form (planRestToRestJerk).  The min(acc, dec) rule for transitions
+// that cross v = 0 is part of the model (docs/motion.md, "Trajectories").
 #include "stdlib-motion/core/Trajectory.h"
 #include "stdlib-motion/core/TrajectoryFamily.h"
 
