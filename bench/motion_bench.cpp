@@ -2,12 +2,14 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <array>
 #include <cstdint>
 #include <random>
 #include <vector>
 
 #include "stdlib-motion/core/Cam.h"
 #include "stdlib-motion/core/Kernel.h"
+#include "stdlib-motion/core/SyncPlan.h"
 #include "stdlib-motion/core/Trajectory.h"
 
 using namespace stc::motion;
@@ -53,6 +55,66 @@ void BM_PlanJerkRestToRest(benchmark::State& st) {
   }
 }
 BENCHMARK(BM_PlanJerkRestToRest);
+// (labels: the previous planner on this machine, commit c0175b8, and Ruckig's figure
+// from the references; docs/motion.md "Benchmarks")
+static const int kLabelled = [] {
+  benchmark::RegisterBenchmark("BM_PlanJerkRestToRest/reference", [](benchmark::State& st) {
+    Profile p;
+    double target = 100;
+    for (auto _ : st) {
+      benchmark::DoNotOptimize(planPosition({0, 0, 0}, target, 0, kJerk, p));
+      benchmark::DoNotOptimize(p);
+      target = target == 100 ? 3.7 : 100;
+    }
+    st.SetLabel("previous planner 226 ns, Ruckig 320 ns (REFERENCES.md)");
+  });
+  return 0;
+}();
+
+void BM_PlanTrapezoidalRestToRest(benchmark::State& st) {
+  Profile p;
+  double target = 100;
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(planPosition({0, 0, 0}, target, 0, kTrap, p));
+    benchmark::DoNotOptimize(p);
+    target = target == 100 ? 3.7 : 100;
+  }
+}
+BENCHMARK(BM_PlanTrapezoidalRestToRest);
+
+// 6 axes with different limits and distances, all finishing together
+void sync6(benchmark::State& st, bool moving, bool phase) {
+  Rng r;
+  std::vector<std::array<SyncAxis, 6>> sets(256);
+  for (auto& set : sets) {
+    for (int i = 0; i < 6; ++i) {
+      SyncAxis& a = set[i];
+      a.lim = {r.uni(5, 15), r.uni(10, 40), r.uni(10, 40), r.uni(100, 400)};
+      a.start.p = r.uni(-10, 10);
+      a.target = r.uni(-100, 100);
+      if (moving) {
+        a.start.v = r.uni(-1, 1) * a.lim.vel;
+        const double x = r.uni(-0.5, 0.5);
+        a.start.a = x * std::min(a.lim.acc, a.lim.dec);
+        a.vEnd = r.u01() < 0.5 ? 0 : r.uni(-1, 1) * a.lim.vel;
+      }
+    }
+  }
+  Profile out[6];
+  size_t i = 0;
+  for (auto _ : st) {
+    const SyncResult res = phase ? planPhaseSynchronized(sets[i].data(), 6, out) : planSynchronized(sets[i].data(), 6, out);
+    benchmark::DoNotOptimize(res);
+    benchmark::DoNotOptimize(out);
+    i = (i + 1) & 255;
+  }
+}
+void BM_Sync6RestToRest(benchmark::State& st) { sync6(st, false, false); }
+void BM_Sync6ArbitraryStates(benchmark::State& st) { sync6(st, true, false); }
+void BM_PhaseSync6RestToRest(benchmark::State& st) { sync6(st, false, true); }
+BENCHMARK(BM_Sync6RestToRest);
+BENCHMARK(BM_Sync6ArbitraryStates);
+BENCHMARK(BM_PhaseSync6RestToRest);
 
 // Cam lookup (y, y', y'') at random master positions vs the number of points:
 // XYVA and 2-D tables search their segment (O(log n)), 1-D tables index it (O(1)).

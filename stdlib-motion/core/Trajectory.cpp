@@ -42,12 +42,14 @@
 //  - A start with |v| > vel: the first transition goes to |vp| <= vel with the
 //    falling-speed bound; it never speeds up beyond vel (beyond |vNat| when a0 pushes).
 //
-// The model is not the unconstrained optimum of the jerk-limited problem: between
-// the transitions the acceleration passes through 0 at vp (a "touch" of a = 0),
-// which from a start with nonzero acceleration can be slower than a profile
-// without it (Ruckig-style UDUD profiles), and the min(acc, dec) rule is
-// conservative for crossing transitions.
+// Besides that shape, jerk-limited position plans from a start acceleration that
+// pushes towards vEnd's side of vNat are also searched in the "eased" shape (see
+// EaseProblem): the acceleration does not pass 0 at a velocity peak there, and
+// such plans can be much faster than any peak-velocity plan.  Rest-to-rest plans
+// are closed-form (planRestToRestJerk).  The min(acc, dec) rule for transitions
+// that cross v = 0 is part of the model (docs/motion.md, "Trajectories").
 #include "stdlib-motion/core/Trajectory.h"
+#include "stdlib-motion/core/TrajectoryFamily.h"
 
 #include <algorithm>
 #include <cmath>
@@ -77,6 +79,9 @@ struct Trans {
   double dur[3];
   double val[3];
   double T = 0, D = 0;
+  double s = 1;        // jerk-limited: +1 if the transition raises v (after a0 is ramped out), else -1
+  double A = 0;        // jerk-limited: the plateau bound used
+  bool over = false;   // jerk-limited: the start acceleration exceeded the plateau bound
 };
 
 // uz, wz: which side of 0 a zero start / end velocity stands for (-1: 0-, +1: 0+,
@@ -93,6 +98,9 @@ inline void transJerk(double u, double a0, double w, const Ctx& c, Trans& r, int
   const double A = startsNonNeg ? c.acc : (endsNonPos ? c.dec : c.amin);
   const double iA = startsNonNeg ? c.iAcc : (endsNonPos ? c.iDec : c.iAmin);
   double t1, j1, t2, t3, ap;
+  r.s = s;
+  r.A = A;
+  r.over = a > A;
   if (a > A) {
     t1 = (a - A) * iJ;
     j1 = -J;
@@ -207,6 +215,31 @@ struct PosProblem {
   }
 };
 
+// The "eased" family of position plans: from a start acceleration a0 != 0 the
+// jerk first eases a0 towards 0 (at -sign(a0) J for te <= |a0| / J, without
+// reaching 0), then one time-optimal transition hardens it again and ends at
+// (vEnd, 0).  The velocity is monotone: such a plan has no interior peak, so it
+// is not a member of the peak-velocity family (which passes a = 0 at vp) and is
+// faster than it when the start is already accelerating towards the end velocity
+// too strongly for the distance (e.g. braking, target a little further away).
+// Residual D(te) - delta; NaN where the transition would start above its bound.
+struct EaseProblem {
+  Ctx c;
+  double v0, a0, vEnd, delta;
+  inline double f(double te, double* T = nullptr, double* mag = nullptr, Trans* keep = nullptr) const {
+    const double g = a0 > 0 ? 1.0 : -1.0;
+    const Kinematic e = integrate({0, v0, a0}, -g * c.J, te);
+    Trans r;
+    transJerk(e.v, e.a, vEnd, c, r);
+    // (at the breakpoint where a(te) = A the start may be above A by rounding)
+    if (r.s != g || (r.over && std::fabs(e.a) > r.A * (1 + 1e-12))) return std::numeric_limits<double>::quiet_NaN();
+    if (T) *T = te + r.T;
+    if (mag) *mag = std::fabs(e.p) + std::fabs(r.D) + std::fabs(delta);
+    if (keep) *keep = r;
+    return (e.p + r.D) - delta;
+  }
+};
+
 // Root of p.f on the piece [lo, hi] with f(lo) * f(hi) < 0.  The search runs on
 // u in [0, 1] with vp = lo + (hi - lo) * s(u), s the smoothstep 3u^2 - 2u^3: the
 // transition times behave like sqrt(|vp - end|) next to a breakpoint (a vanishing
@@ -219,8 +252,9 @@ inline double mapPiece(double lo, double hi, double u) {
   return hi - (hi - lo) * (w * w * (3 - 2 * w));
 }
 
-double solveRoot(const PosProblem& p, double lo, double flo, double hi, double fhi) {
-  const int zs = lo == 0 ? 1 : hi == 0 ? -1 : 0;   // a piece next to 0 is on one side of it
+// fn(x, T*, mag*, zs) is the residual at x on the piece [lo, hi].
+template <class Fn>
+double solveRootOn(const Fn& fn, double lo, double flo, double hi, double fhi, int zs) {
   double u0 = 0, f0 = flo, u1 = 1, f1 = fhi;
   for (int it = 0; it < 100; ++it) {
     double u = u1 - f1 * (u1 - u0) / (f1 - f0);
@@ -230,7 +264,8 @@ double solveRoot(const PosProblem& p, double lo, double flo, double hi, double f
       if (!(u > a && u < b)) break;
     }
     double mag;
-    const double fu = p.f(mapPiece(lo, hi, u), nullptr, &mag, zs);
+    const double fu = fn(mapPiece(lo, hi, u), nullptr, &mag, zs);
+    if (std::isnan(fu)) return fu;
     if (std::fabs(fu) <= 4e-16 * mag) return mapPiece(lo, hi, u);
     if ((fu < 0) != (f1 < 0)) {
       u0 = u1; f0 = f1;
@@ -240,6 +275,67 @@ double solveRoot(const PosProblem& p, double lo, double flo, double hi, double f
     u1 = u; f1 = fu;
   }
   return mapPiece(lo, hi, std::fabs(f0) < std::fabs(f1) ? u0 : u1);
+}
+
+double solveRoot(const PosProblem& p, double lo, double flo, double hi, double fhi) {
+  const int zs = lo == 0 ? 1 : hi == 0 ? -1 : 0;   // a piece next to 0 is on one side of it
+  auto fn = [&p](double x, double* T, double* mag, int z) { return p.f(x, T, mag, z); };
+  return solveRootOn(fn, lo, flo, hi, fhi, zs);
+}
+
+// Rest-to-rest (v0 = a0 = vEnd = 0), jerk-limited, closed form.  The rising
+// transition uses acc (A1), the falling one dec (A2); each is a triangle of time
+// 2 sqrt(vp/J) below vp = A^2/J, else a trapezoid of time vp/A + A/J, and the
+// distance of both together is vp (T1 + T2) / 2.  D(vp) grows with vp, so the
+// piece holding the root follows from D at the two breakpoints; on it the root
+// is explicit (both triangles: D = 2 vp^1.5 / sqrt(J); both trapezoids: a
+// quadratic in vp) or, one of each, the positive root of a quartic in
+// s = sqrt(vp) by Newton from the right end (increasing and convex: monotone).
+void planRestToRestJerk(const Kinematic& start, double target, const Ctx& c, Profile& out) {
+  const double delta = target - start.p;
+  const double dir = delta > 0 ? 1.0 : -1.0, D = std::fabs(delta);
+  const double J = c.J, iJ = c.iJ, A1 = c.acc, A2 = c.dec;
+  auto tOf = [&](double vp, double A) { return vp * J >= A * A ? vp / A + A * iJ : 2 * std::sqrt(vp * iJ); };
+  auto dOf = [&](double vp) { return 0.5 * vp * (tOf(vp, A1) + tOf(vp, A2)); };
+  double vp, tc = 0;
+  const double dVel = dOf(c.vel);
+  if (dVel <= D) {
+    vp = c.vel;
+    tc = (D - dVel) / c.vel;
+  } else {
+    const double b1 = std::min(A1, A2), b2 = std::max(A1, A2);
+    const double vLo = b1 * b1 * iJ, vHi = b2 * b2 * iJ;
+    if (vLo >= c.vel || D <= dOf(vLo)) {
+      vp = std::cbrt(0.25 * D * D * J);   // (D sqrt(J) / 2)^(2/3)
+    } else if (vHi >= c.vel || D <= dOf(vHi)) {
+      // s^4 / (2 b1) + s^3 / sqrt(J) + s^2 b1 / (2 J) - D = 0
+      const double k4 = 0.5 / b1, k3 = std::sqrt(iJ), k2 = 0.5 * b1 * iJ;
+      double sq = std::sqrt(std::min(vHi, c.vel));
+      for (int it = 0; it < 60; ++it) {
+        const double s2 = sq * sq;
+        const double h = s2 * (s2 * k4 + sq * k3 + k2) - D;
+        const double dh = sq * (4 * s2 * k4 + 3 * sq * k3 + 2 * k2);
+        const double step = h / dh;
+        sq -= step;
+        if (!(std::fabs(step) > 1e-16 * sq)) break;
+      }
+      vp = sq * sq;
+    } else {
+      // vp^2 (1/A1 + 1/A2) / 2 + vp (A1 + A2) / (2 J) - D = 0
+      const double qa = 0.5 * (1 / A1 + 1 / A2), qb = 0.5 * (A1 + A2) * iJ;
+      vp = 2 * D / (qb + std::sqrt(qb * qb + 4 * qa * D));
+    }
+    vp = std::min(vp, c.vel);
+  }
+  Trans r1, r2;
+  transJerk(0, 0, dir * vp, c, r1);
+  transJerk(dir * vp, 0, 0, c, r2);
+  out.clear(start);
+  pushTrans(out, r1, true);
+  out.snap(dir * vp, 0.0);
+  if (tc > 0) out.push(tc, 0.0);
+  pushTrans(out, r2, true);
+  out.finish({target, 0.0, 0.0});
 }
 
 }  // namespace
@@ -319,6 +415,11 @@ PlanStatus planPosition(const Kinematic& start, double target, double vEnd, cons
   }
   PosProblem P;
   P.c = makeCtx(lim);
+  if (P.c.jerkMode && start.v == 0 && start.a == 0 && vEnd == 0) {
+    if (target == start.p) hold(start, out);
+    else planRestToRestJerk(start, target, P.c, out);
+    return PlanStatus::Ok;
+  }
   const Ctx& c = P.c;
   P.v0 = start.v;
   P.a0 = c.jerkMode ? start.a : 0.0;
@@ -387,6 +488,86 @@ PlanStatus planPosition(const Kinematic& start, double target, double vEnd, cons
     }
   }
 
+  // the eased family (jerk-limited, a0 pushing beyond vEnd's side of vNat)
+  bool eased = false;
+  double bestTe = 0;
+  if (c.jerkMode && P.a0 != 0 && (P.a0 > 0 ? vEnd > vnat : vEnd < vnat)) {
+    const EaseProblem E{c, P.v0, P.a0, vEnd, P.delta};
+    const double aa = std::fabs(P.a0), g = P.a0 > 0 ? 1.0 : -1.0;
+    const double tm = aa * c.iJ;
+    double tb[16];
+    int nt = 0;
+    double tCross = -1;   // where v crosses 0 during the ease: the bound A (and D) jump there
+    auto addT = [&](double t) {
+      if (!(t > 0 && t < tm)) return;
+      int k = nt++;
+      while (k > 0 && tb[k - 1] > t) { tb[k] = tb[k - 1]; --k; }
+      tb[k] = t;
+    };
+    tb[nt++] = 0;
+    // v crosses 0 during the ease: g v(te) = g v0 + |a0| te - J te^2 / 2 = 0
+    const double disc = aa * aa + 2 * c.J * g * P.v0;
+    if (g * P.v0 < 0 && disc >= 0) {
+      tCross = (aa - std::sqrt(disc)) * c.iJ;
+      addT(tCross);
+    }
+    // the transition reaches its plateau bound A: a(te)^2 + J g (vEnd - vNat) = A^2,
+    // and the start of the transition is at A
+    const double K = c.J * g * (vEnd - vnat);
+    for (double A : {c.acc, c.dec}) {
+      if (A * A > K) addT((aa - std::sqrt(A * A - K)) * c.iJ);
+      addT((aa - A) * c.iJ);
+    }
+    // D(te) is not monotone: its stationary points (a1 = |a0| - J te, mirrored so
+    // that a0 > 0; vn = g vNat) are, without plateau (ap^2 = a1^2 + K),
+    // 2 a1^2 - 2 J vn = a1 ap, i.e. 3 a1^4 - (8 J vn + K) a1^2 + 4 J^2 vn^2 = 0, and
+    // with a plateau at A, 2 a1^2 - A a1 - 2 J vn = 0.  The total time grows with te.
+    const double vn = g * vnat;
+    {
+      const double b = 8 * c.J * vn + K, q = 4 * c.J * c.J * vn * vn;
+      const double d2 = b * b - 12 * q;
+      if (d2 >= 0) {
+        const double sq = std::sqrt(d2);
+        for (double x2 : {(b + sq) / 6, (b - sq) / 6})
+          if (x2 > 0) addT((aa - std::sqrt(x2)) * c.iJ);
+      }
+      for (double A : {c.acc, c.dec}) {
+        const double d3 = A * A + 16 * c.J * vn;
+        if (d3 >= 0) {
+          const double sq = std::sqrt(d3);
+          addT((aa - (A + sq) * 0.25) * c.iJ);
+          addT((aa - (A - sq) * 0.25) * c.iJ);
+        }
+      }
+    }
+    tb[nt++] = tm;
+    // fe: the value at a point, fl: the limit from the left (differs at tCross)
+    double fe[16], fl[16], Te[16];
+    for (int i = 0; i < nt; ++i) {
+      fe[i] = fl[i] = E.f(tb[i], &Te[i]);
+      if (tb[i] == tCross) fl[i] = E.f(std::nextafter(tb[i], 0.0));
+      if (fe[i] == 0 && Te[i] < bestT) { bestT = Te[i]; eased = true; bestTe = tb[i]; }
+    }
+    auto fn = [&E](double x, double* T, double* mag, int) { return E.f(x, T, mag); };
+    for (int i = 0; i + 1 < nt; ++i) {
+      if ((fe[i] < 0 && fl[i + 1] > 0) || (fe[i] > 0 && fl[i + 1] < 0)) {
+        const double x = solveRootOn(fn, tb[i], fe[i], tb[i + 1], fl[i + 1], 0);
+        double T = std::numeric_limits<double>::infinity(), mag = 0;
+        const double fx = E.f(x, &T, &mag);
+        if (std::fabs(fx) <= 1e-10 * mag && T < bestT) { bestT = T; eased = true; bestTe = x; }
+      }
+    }
+    if (eased) {
+      Trans r;
+      E.f(bestTe, nullptr, nullptr, &r);
+      out.clear(start);
+      if (bestTe > 0) out.push(bestTe, -g * c.J);
+      pushTrans(out, r, true);
+      out.finish({target, vEnd, 0.0});
+      return PlanStatus::Ok;
+    }
+  }
+
   Trans r1, r2;
   trans(P.v0, P.a0, bestVp, c, r1, 0, bestZs);
   trans(bestVp, 0, vEnd, c, r2, bestZs, 0);
@@ -403,3 +584,184 @@ PlanStatus planPosition(const Kinematic& start, double target, double vEnd, cons
 }
 
 }  // namespace stc::motion
+
+// ---------------------------------------------------------------- timed family
+
+namespace stc::motion::detail {
+
+PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd, const Limits& lim) {
+  n_ = 0;
+  wait_ = false;
+  const PlanStatus st = planPosition(start, target, vEnd, lim, opt_);
+  if (st != PlanStatus::Ok) return st;
+  lim_ = lim;
+  start_ = start;
+  target_ = target;
+  vEnd_ = vEnd;
+  PosProblem P;
+  P.c = makeCtx(lim);
+  P.v0 = v0_ = start.v;
+  P.a0 = a0_ = P.c.jerkMode ? start.a : 0.0;
+  P.vEnd = vEnd;
+  P.delta = delta_ = target - start.p;
+  const double vel = P.c.vel;
+  const double vnat = P.c.jerkMode ? P.v0 + P.a0 * std::fabs(P.a0) / (2 * P.c.J) : P.v0;
+  // points: the breakpoints of vp (as in planPosition), then the roots of D = delta
+  auto add = [&](double x, int side) {
+    if (n_ >= kMaxPoints) return;
+    int k = n_++;
+    while (k > 0 && (x_[k - 1] > x || (x_[k - 1] == x && zs_[k - 1] > side))) {
+      x_[k] = x_[k - 1]; zs_[k] = zs_[k - 1]; f_[k] = f_[k - 1]; tt_[k] = tt_[k - 1];
+      --k;
+    }
+    x_[k] = x;
+    zs_[k] = side;
+    f_[k] = P.f(x, &tt_[k], nullptr, side);
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  if (start.v == 0 && P.a0 == 0 && vEnd == 0 && delta_ != 0) {
+    // rest to rest: the durations are [minimum, inf), cruising at 0 < |vp| <= the
+    // optimal peak (G falls from inf to the minimum there)
+    double peak = 0;
+    for (int i = 0; i < opt_.segmentCount(); ++i) peak = std::max(peak, std::fabs(opt_.segment(i).v));
+    const double dir = delta_ > 0 ? 1.0 : -1.0;
+    if (dir > 0) { add(0.0, 1); add(peak, 0); }
+    else { add(-peak, 0); add(0.0, -1); }
+    const int k0 = dir > 0 ? 0 : 1;
+    g_[k0] = inf;
+    g_[1 - k0] = minimum();
+    inS_[0] = true;
+    inS_[1] = false;
+    return PlanStatus::Ok;
+  }
+  add(-vel, 0);
+  add(0.0, -1);
+  add(0.0, 1);
+  if (vnat > -vel && vnat < vel && vnat != 0) add(vnat, 0);
+  if (vEnd > -vel && vEnd < vel && vEnd != 0 && vEnd != vnat) add(vEnd, 0);
+  add(vel, 0);
+  double roots[8];
+  int nr = 0;
+  for (int i = 0; i + 1 < n_; ++i) {
+    if (x_[i] == 0 && x_[i + 1] == 0) continue;
+    if ((f_[i] < 0 && f_[i + 1] > 0) || (f_[i] > 0 && f_[i + 1] < 0))
+      roots[nr++] = solveRoot(P, x_[i], f_[i], x_[i + 1], f_[i + 1]);
+  }
+  for (int i = 0; i < nr; ++i) add(roots[i], roots[i] == 0 ? 1 : 0);
+  // stop and wait: D(0) = delta on one side of 0
+  for (int i = 0; i < n_; ++i) {
+    if (x_[i] == 0 && f_[i] == 0 && (!wait_ || tt_[i] < waitT_)) {
+      wait_ = true;
+      waitSide_ = zs_[i];
+      waitT_ = tt_[i];
+    }
+  }
+  // durations at the points and the pieces that admit a cruise
+  for (int i = 0; i < n_; ++i) {
+    const double x = x_[i];
+    g_[i] = x == 0 ? inf : tt_[i] + std::max(0.0, -f_[i] / x);
+  }
+  for (int i = 0; i + 1 < n_; ++i) {
+    inS_[i] = false;
+    if (x_[i] == 0 && x_[i + 1] == 0) continue;
+    const double side = x_[i] < 0 || (x_[i] == 0 && x_[i + 1] < 0) ? -1.0 : 1.0;   // (0 is a breakpoint)
+    // (f has one sign inside a piece; an endpoint may be a root, f ~ 0 of either sign)
+    const double fs = std::fabs(f_[i]) >= std::fabs(f_[i + 1]) ? f_[i] : f_[i + 1];
+    inS_[i] = side > 0 ? fs <= 0 : fs >= 0;
+  }
+  if (n_ > 0) inS_[n_ - 1] = false;
+  return PlanStatus::Ok;
+}
+
+int TimedFamily::starts(double* out, int cap) const {
+  int k = 0;
+  if (k < cap) out[k++] = minimum();
+  if (wait_ && k < cap) out[k++] = waitT_;
+  for (int i = 0; i < n_ && k < cap; ++i) {
+    const bool edge = (i + 1 < n_ && inS_[i]) || (i > 0 && inS_[i - 1]);
+    if (edge && std::isfinite(g_[i])) out[k++] = g_[i];
+  }
+  return k;
+}
+
+namespace {
+inline bool closeTo(double a, double b) {
+  return std::isfinite(b) && std::fabs(a - b) <= 1e-12 * std::max(1.0, std::fabs(b));
+}
+}  // namespace
+
+bool TimedFamily::feasible(double T) const {
+  if (closeTo(T, minimum())) return true;
+  if (wait_ && T >= waitT_) return true;
+  for (int i = 0; i + 1 < n_; ++i) {
+    if (!inS_[i]) continue;
+    const double lo = std::min(g_[i], g_[i + 1]), hi = std::max(g_[i], g_[i + 1]);
+    if ((T >= lo && T <= hi) || closeTo(T, lo) || closeTo(T, hi)) return true;
+  }
+  return false;
+}
+
+bool TimedFamily::plan(double T, Profile& out) const {
+  out = opt_;
+  if (closeTo(T, minimum())) return true;
+  PosProblem P;
+  P.c = makeCtx(lim_);
+  P.v0 = v0_;
+  P.a0 = a0_;
+  P.vEnd = vEnd_;
+  P.delta = delta_;
+  const Ctx& c = P.c;
+  double vp = 0;
+  int side = 0;
+  bool found = false;
+  if (wait_ && T >= waitT_) {
+    vp = 0;
+    side = waitSide_;
+    found = true;
+  }
+  // h(vp) = vp (T1 + T2 - T) - (D(vp) - delta): zero where the cruise makes the time T
+  auto h = [&](double x, double* Tt, double* mag, int z) {
+    double tr, m;
+    const double fx = P.f(x, &tr, &m, z);
+    if (Tt) *Tt = tr;
+    if (mag) *mag = m + std::fabs(x) * (tr + T);
+    return x * (tr - T) - fx;
+  };
+  for (int i = 0; i + 1 < n_ && !found; ++i) {
+    if (!inS_[i]) continue;
+    const double lo = std::min(g_[i], g_[i + 1]), hi = std::max(g_[i], g_[i + 1]);
+    if (!(T >= lo && T <= hi) && !closeTo(T, lo) && !closeTo(T, hi)) continue;
+    if (closeTo(T, g_[i]) && x_[i] != 0) { vp = x_[i]; side = zs_[i]; found = true; break; }
+    if (closeTo(T, g_[i + 1]) && x_[i + 1] != 0) { vp = x_[i + 1]; side = zs_[i + 1]; found = true; break; }
+    const double hlo = h(x_[i], nullptr, nullptr, zs_[i]), hhi = h(x_[i + 1], nullptr, nullptr, zs_[i + 1]);
+    if (!((hlo <= 0 && hhi >= 0) || (hlo >= 0 && hhi <= 0))) continue;
+    const int z = x_[i] == 0 ? 1 : x_[i + 1] == 0 ? -1 : 0;
+    vp = solveRootOn(h, x_[i], hlo, x_[i + 1], hhi, z);
+    side = vp != 0 ? 0 : z;
+    double mag = 0;
+    found = !std::isnan(vp) && std::fabs(h(vp, nullptr, &mag, side)) <= 1e-11 * mag;
+  }
+  if (!found) return false;
+  Trans r1, r2;
+  trans(P.v0, P.a0, vp, c, r1, 0, side);
+  trans(vp, 0, vEnd_, c, r2, side, 0);
+  const double tc = std::max(0.0, T - r1.T - r2.T);
+  out.clear(start_);
+  pushTrans(out, r1, c.jerkMode);
+  out.snap(vp, 0.0);
+  if (tc > 0) {
+    if (c.jerkMode) out.push(tc, 0.0);
+    else out.pushAcc(tc, 0.0);
+  }
+  pushTrans(out, r2, c.jerkMode);
+  out.finish({target_, vEnd_, 0.0});
+  // (G is not always monotone between the points: a piece whose end values
+  // bracket T may not hold a plan of duration T)
+  if (!(std::fabs(out.duration() - T) <= 1e-10 * std::max(1.0, T))) {
+    out = opt_;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace stc::motion::detail
