@@ -82,6 +82,7 @@ void moveDirect(T* self, const sm3::SMC_POS_REF& pos, bool relative) {
     DirectInputs in;
     for (size_t i = 0; i < kMaxGroupAxes; ++i) in.position[i] = pos.v[i];
     in.relative = relative || self->CoordSystem == 5;   // TCS
+    in.pathInvariant = self->MovementType == 1;
     in.velFactor = self->VelFactor;
     in.accFactor = self->AccFactor;
     in.jerkFactor = self->JerkFactor;

@@ -7,6 +7,7 @@
 #include "stdlib-motion/core/InputBounds.h"
 #include "stdlib-motion/core/Kernel.h"
 #include "stdlib-motion/core/Profiles.h"
+#include "stdlib-motion/core/SyncPlan.h"
 
 namespace stc::motion {
 
@@ -15,17 +16,28 @@ void PtpMotion::at(double t, Kinematic* q) const {
 }
 
 PlanStatus planPtp(const std::vector<Kinematic>& start, const std::vector<double>& target, const std::vector<Limits>& lim,
-                   PtpMotion& out) {
+                   PtpMotion& out, bool pathInvariant) {
   const size_t n = start.size();
   out.profiles.assign(n, Profile{});
   out.total = 0;
   bool atRest = true;
+  for (size_t i = 0; i < n; ++i) atRest = atRest && start[i].v == 0 && start[i].a == 0;
+  if (!atRest || pathInvariant) {
+    SyncAxis axes[kMaxSyncAxes];
+    for (size_t i = 0; i < n; ++i) axes[i] = SyncAxis{start[i], target[i], 0, lim[i]};
+    Profile profiles[kMaxSyncAxes];
+    const SyncResult r = atRest ? planPhaseSynchronized(axes, static_cast<int>(n), profiles)
+                                : planSynchronized(axes, static_cast<int>(n), profiles);
+    if (r.status != SyncStatus::Ok) return PlanStatus::InvalidLimits;
+    out.profiles.assign(profiles, profiles + n);
+    out.total = r.duration;
+    return PlanStatus::Ok;
+  }
   for (size_t i = 0; i < n; ++i) {
     if (PlanStatus s = planPosition(start[i], target[i], 0, lim[i], out.profiles[i]); s != PlanStatus::Ok) return s;
     out.total = std::max(out.total, out.profiles[i].duration());
-    atRest = atRest && start[i].v == 0 && start[i].a == 0;
   }
-  if (!atRest || out.total <= 0) return PlanStatus::Ok;
+  if (out.total <= 0) return PlanStatus::Ok;
   // Time scaling of the faster members: the same plan at k times the speed lasts T_i / k.
   for (size_t i = 0; i < n; ++i) {
     const double ti = out.profiles[i].duration();
@@ -203,7 +215,8 @@ Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs) {
       target[i] = stopProfile.end().p;
     }
   }
-  if (planPtp(start, target, lim, *m) != PlanStatus::Ok) return Error::AgAxisLimitsMissing;
+  const bool invariant = cmd.kind == GroupCommand::Kind::Direct && cmd.direct.pathInvariant;
+  if (planPtp(start, target, lim, *m, invariant) != PlanStatus::Ok) return Error::AgAxisLimitsMissing;
   g.motion = m;
   g.lastMotion = std::move(m);
   g.originNs = g.lastOriginNs = nowNs;

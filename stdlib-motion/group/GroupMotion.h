@@ -33,18 +33,20 @@ public:
   double duration() const override { return total; }
 };
 
-// Plans every member from `start` to `target` (at rest) under its limits; the members
-// whose own time-optimal plan is shorter are slowed down by time scaling (velocity x k,
-// acceleration x k^2, jerk x k^3 with k = their time / the longest time), so all arrive
-// together and keep their profile shape.  From a moving start each member keeps its own
-// time-optimal plan (ends at the latest member's time; docs/motion-groups.md).
+// Plans every member from `start` to `target` (at rest) under its limits, all arriving
+// together at the earliest common time.  From rest (Fast): the members whose own
+// time-optimal plan is shorter are slowed down by time scaling (velocity x k, acceleration
+// x k^2, jerk x k^3 with k = their time / the longest time) and keep their profile shape;
+// from a moving start: the synchronised planner (core/SyncPlan.h).  pathInvariant (from
+// rest): every member moves proportionally, on the straight line in joint space.
 PlanStatus planPtp(const std::vector<Kinematic>& start, const std::vector<double>& target, const std::vector<Limits>& lim,
-                   PtpMotion& out);
+                   PtpMotion& out, bool pathInvariant = false);
 
 // MC_MoveDirectAbsolute / MC_MoveDirectRelative inputs (joint space), latched at the edge.
 struct DirectInputs {
   double position[kMaxGroupAxes] = {};   // absolute targets, or distances when `relative`
   bool relative = false;
+  bool pathInvariant = false;            // SMC_PTP_MOVEMENT_TYPE.Path_Invariant
   double velFactor = 1, accFactor = 1, jerkFactor = 1;
   BufferMode bufferMode = BufferMode::Aborting;
   int transitionMode = 0;                // MC_TRANSITION_MODE (0 TMNone)
