@@ -165,6 +165,7 @@ TEST(KinCartesian, RandomRoundTrips) {
       roundTrip(k, q, 1000, st, n % 10 == 0, "cartesian");
     }
     expectStats(st, ("cartesian" + std::to_string(axes)).c_str());
+    neverNaN(k, "cartesian");
   }
 }
 
