@@ -186,5 +186,6 @@ void registerSm3GroupNatives(MotionLibrary& lib);   // Sm3Group.cpp: axis groups
 void registerSm3ProfilesNatives(MotionLibrary& lib);
 void registerSm3SyncNatives(MotionLibrary& lib);   // Sm3Sync.cpp: gear, phasing, backlash
 void registerSm3CamNatives(MotionLibrary& lib);    // Sm3Cam.cpp: cams, tappets, cam files
+void registerSm3TrafoNatives(MotionLibrary& lib);  // Sm3Trafo.cpp: kinematic transformations (SM3_CNC)
 void registerLsFollowNatives(MotionLibrary& lib);   // leadshine/LsFollow.cpp
 }  // namespace stc::motion

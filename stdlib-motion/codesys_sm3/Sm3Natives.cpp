@@ -234,6 +234,7 @@ void registerSm3Natives(MotionLibrary& lib) {
   registerSm3SyncNatives(lib);
   registerSm3CamNatives(lib);
   registerSm3GroupNatives(lib);
+  registerSm3TrafoNatives(lib);
   registerLsFollowNatives(lib);
   STC_SM3_NATIVE(MC_Power, MC_Power)
   STC_SM3_NATIVE(MC_Reset, MC_Reset)
