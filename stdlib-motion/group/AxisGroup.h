@@ -73,6 +73,9 @@ public:
   // A path started from rest in a call of cycle N begins at that cycle's time: the step of
   // cycle N samples it at t = 0 and shows Active (as every group move: Active in N + 1).
   uint64_t pathStartCycle = 0;
+  // A halt or an aborting move in a call of cycle N acts at that cycle's time: the planner
+  // is advanced to it in the call, and the step of cycle N does not advance it again.
+  uint64_t pathAdvancedCycle = 0;
   std::vector<uint32_t> startedInCall;   // Started events of a call, shown by the next step
 
   // ---- state machine (used by the group instructions and the kernel step)

@@ -338,6 +338,13 @@ Error appendPath(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, uint64_t cy
   return Error::None;
 }
 
+// Brings a running planner to the time of this call (its last step was the previous cycle's).
+void advanceToCall(AxisGroup& g, const CallCtx& c) {
+  if (!g.planner || g.pathAdvancedCycle == c.cycle || g.pathStartCycle == c.cycle || !g.planner->sample().moving) return;
+  g.planner->advance(static_cast<double>(c.intervalNs) * 1e-9);
+  g.pathAdvancedCycle = c.cycle;
+}
+
 // The planner's events of this step or call: Active, Done, CommandAborted of the path FBs.
 void drainPathEvents(Kernel& k, AxisGroup& g, const CallCtx* c, uint64_t cycle) {
   if (!g.planner) return;
@@ -397,6 +404,7 @@ void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const 
     g.queue.push_back(&fb);
     return accepted(g, fb);
   }
+  if (in.bufferMode == BufferMode::Aborting) advanceToCall(g, c);   // the replaced path stops from now
   if (Error e = appendPath(k, g, fb, c.nowNs, c.cycle); e != Error::None) return k.fail(fb, e, c);
   accepted(g, fb);
   drainPathEvents(k, g, &c, c.cycle);   // Aborting: the replaced moves end in this call
@@ -447,8 +455,9 @@ namespace {
 
 void callGroupBrake(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const GroupStopInputs& in, const CallCtx& c,
                     GroupCommand::Kind kind) {
+  const bool wasDone = fb.out.done;
   const bool rising = k.beginExecute(fb, execute, c);
-  if (kind == GroupCommand::Kind::Stop && !execute && fb.out.done && g.state() == GroupState::Stopping && !g.active) {
+  if (kind == GroupCommand::Kind::Stop && !execute && wasDone && g.state() == GroupState::Stopping && !g.active && !pathMode(g)) {
     // MC_GroupStop holds GroupStopping until its Execute falls (PLCopen Part 4).
     g.setState(GroupState::Standby);
     releaseMembers(k, g);
@@ -472,6 +481,7 @@ void callGroupBrake(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Gro
     // On the path: the planner brakes along it; every queued move (and PTP behind it) ends.
     for (FbSlot* q : g.queue) k.finish(*q, &c, c.cycle, false, true, Error::None);
     g.queue.clear();
+    advanceToCall(g, c);
     const uint32_t id = g.planner->halt(in.deceleration * in.accFactor, in.jerk * in.jerkFactor);
     drainPathEvents(k, g, &c, c.cycle);
     g.pathCommands.push_back({id, &fb});
@@ -524,7 +534,7 @@ void stepPath(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64
   for (const auto& [id, fb] : g.pathCommands)
     if (fb->out.active && fb->lastCallCycle != cycle && commandOf(*fb).kind != GroupCommand::Kind::Stop)
       return groupError(k, g, Error::FbWasntCalledDuringMotion, Error::None, nowNs, cycle);
-  const double dt = cycle == g.pathStartCycle ? 0.0 : static_cast<double>(intervalNs) * 1e-9;
+  const double dt = cycle == g.pathStartCycle || cycle == g.pathAdvancedCycle ? 0.0 : static_cast<double>(intervalNs) * 1e-9;
   const path::Sample& s = g.planner->advance(dt);
   for (size_t i = 0; i < g.axes().size() && i < g.gens.size(); ++i) {
     g.gens[i]->state = Kinematic{s.pos[i], s.vel[i], s.acc[i]};
