@@ -214,6 +214,37 @@ void MC_GroupReadStatus(sm3::MC_GroupReadStatus* self) {
   });
 }
 
+// Set and actual values of the members: v[i] = member i (every coordinate system while the
+// group has no kinematics); the rest of the union is 0.
+template <class T, class F>
+void groupValues(T* self, sm3::SMC_POS_REF& out, F value) {
+  out = sm3::SMC_POS_REF{};
+  groupReader(self, [&](AxisGroup& g) {
+    for (size_t i = 0; i < g.axes().size(); ++i) out.v[i] = value(*g.axes()[i]);
+  });
+}
+void SMC_GroupReadSetPosition(sm3::SMC_GroupReadSetPosition* self) {
+  self->KinematicConfig = sm3::CONFIGDATA{};
+  groupValues(self, self->Position, [](const Axis& ax) { return ax.reportPosition(ax.set().p); });
+}
+void SMC_GroupReadSetVelocity(sm3::SMC_GroupReadSetVelocity* self) {
+  groupValues(self, self->Velocity, [](const Axis& ax) { return ax.set().v; });
+}
+void SMC_GroupReadSetAcceleration(sm3::SMC_GroupReadSetAcceleration* self) {
+  groupValues(self, self->Acceleration, [](const Axis& ax) { return ax.set().a; });
+}
+void MC_GroupReadActualPosition(sm3::MC_GroupReadActualPosition* self) {
+  self->KinematicConfig = sm3::CONFIGDATA{};
+  groupValues(self, self->Position, [](const Axis& ax) { return ax.reportPosition(ax.actPosition()); });
+}
+void MC_GroupReadActualVelocity(sm3::MC_GroupReadActualVelocity* self) {
+  groupValues(self, self->Velocity, [](const Axis& ax) { return ax.actVelocity(); });
+}
+
+void SMC_GroupWait(sm3::SMC_GroupWait* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) { callGroupWait(k, fb, g, self->Execute, self->WaitTime, c); });
+}
+
 void MC_GroupReadError(sm3::MC_GroupReadError* self) {
   self->GroupErrorID = 0;
   groupReader(self, [&](AxisGroup& g) {
@@ -257,6 +288,12 @@ void registerSm3GroupNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(MC_MoveDirectAbsolute, MC_MoveDirectAbsolute)
   STC_SM3_NATIVE(MC_MoveDirectRelative, MC_MoveDirectRelative)
   STC_SM3_NATIVE(MC_GroupHalt, MC_GroupHalt)
+  STC_SM3_NATIVE(SMC_GroupReadSetPosition, SMC_GroupReadSetPosition)
+  STC_SM3_NATIVE(SMC_GroupReadSetVelocity, SMC_GroupReadSetVelocity)
+  STC_SM3_NATIVE(SMC_GroupReadSetAcceleration, SMC_GroupReadSetAcceleration)
+  STC_SM3_NATIVE(MC_GroupReadActualPosition, MC_GroupReadActualPosition)
+  STC_SM3_NATIVE(MC_GroupReadActualVelocity, MC_GroupReadActualVelocity)
+  STC_SM3_NATIVE(SMC_GroupWait, SMC_GroupWait)
   STC_SM3_NATIVE(MC_MoveLinearAbsolute, MC_MoveLinearAbsolute)
   STC_SM3_NATIVE(MC_MoveLinearRelative, MC_MoveLinearRelative)
   STC_SM3_NATIVE(MC_MoveCircularAbsolute, MC_MoveCircularAbsolute)

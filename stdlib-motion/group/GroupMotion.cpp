@@ -11,6 +11,19 @@
 
 namespace stc::motion {
 
+namespace {
+// SMC_GroupWait: the members stand where the dwell began.
+class HoldMotion : public GroupMotion {
+public:
+  std::vector<Kinematic> at_;
+  double total = 0;
+  void at(double, Kinematic* q) const override {
+    for (size_t i = 0; i < at_.size(); ++i) q[i] = Kinematic{at_[i].p, 0, 0};
+  }
+  double duration() const override { return total; }
+};
+}  // namespace
+
 void PtpMotion::at(double t, Kinematic* q) const {
   for (size_t i = 0; i < profiles.size(); ++i) q[i] = profiles[i].at(t);
 }
@@ -57,7 +70,8 @@ namespace {
 
 // The data of one group command (the FB slot's behaviour).
 struct GroupCommand : FbBehaviour {
-  enum class Kind : uint8_t { Direct, Halt, Stop, Path } kind = Kind::Direct;
+  enum class Kind : uint8_t { Direct, Halt, Stop, Path, Wait } kind = Kind::Direct;
+  double waitTime = 0;
   DirectInputs direct;
   GroupStopInputs stop;
   PathInputs path;
@@ -178,7 +192,7 @@ void groupError(Kernel& k, AxisGroup& g, Error groupErr, Error axisErr, int64_t 
 }
 
 // Starts fb (the group's next command) at nowNs from the members' present set states.
-Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs) {
+Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, int64_t originNs) {
   GroupCommand& cmd = commandOf(fb);
   // The members' exact state now: from the group's latest motion while it controls them
   // (the axes have not been stepped in this cycle yet), else their set states.
@@ -193,6 +207,21 @@ Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs) {
     for (size_t i = 0; i < start.size(); ++i) start[i] = g.axes()[i]->set();
   }
   takeMembers(k, g, nowNs);
+  if (cmd.kind == GroupCommand::Kind::Wait) {
+    auto hold = std::make_shared<HoldMotion>();
+    hold->at_ = start;
+    hold->total = cmd.waitTime;
+    g.motion = hold;
+    g.lastMotion = std::move(hold);
+    g.originNs = g.lastOriginNs = originNs;
+    g.active = &fb;
+    g.ended = false;
+    g.activeMovementId = fb.out.movementId;
+    g.setState(GroupState::Moving);
+    fb.out.active = true;
+    fb.sync();
+    return Error::None;
+  }
   auto m = std::make_shared<PtpMotion>();
   std::vector<Limits> lim;
   std::vector<double> target(g.axes().size());
@@ -219,7 +248,7 @@ Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs) {
   if (planPtp(start, target, lim, *m, invariant) != PlanStatus::Ok) return Error::AgAxisLimitsMissing;
   g.motion = m;
   g.lastMotion = std::move(m);
-  g.originNs = g.lastOriginNs = nowNs;
+  g.originNs = g.lastOriginNs = originNs;
   g.active = &fb;
   g.ended = false;
   g.activeMovementId = fb.out.movementId;
@@ -451,6 +480,26 @@ void callGroupMoveDirect(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, cons
   accepted(g, fb);
 }
 
+void callGroupWait(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, double waitTime, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return followExecute(fb, execute);
+  fb.out.commandAccepted = false;
+  if (!std::isfinite(waitTime) || waitTime < 0 || waitTime > 1e9) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  if (Error e = motionRefusal(k, g); e != Error::None) return k.fail(fb, e, c);
+  GroupCommand& cmd = commandOf(fb);
+  cmd.kind = GroupCommand::Kind::Wait;
+  cmd.waitTime = waitTime;
+  fb.axis = nullptr;
+  // Always queued behind what the group does; on an idle group it starts in this cycle's step.
+  const bool idle = !g.pending && !g.active && g.queue.empty() && !pathMode(g);
+  if (idle) {
+    g.pending = &fb;
+  } else {
+    if (g.queue.size() >= k.profile.queueCapacity) return k.fail(fb, Error::BufferFull, c);
+    g.queue.push_back(&fb);
+  }
+  accepted(g, fb);
+}
+
 namespace {
 
 void callGroupBrake(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const GroupStopInputs& in, const CallCtx& c,
@@ -507,7 +556,7 @@ namespace {
 
 // After a command ended: the next buffered one starts from this instant; consecutive
 // path moves go to the planner together.  Nothing left: GroupStandby in the next step.
-void startQueued(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
+void startQueued(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle, int64_t originNs) {
   if (g.queue.empty()) {
     g.ended = true;
     return;
@@ -515,7 +564,7 @@ void startQueued(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
   FbSlot* next = g.queue.front();
   if (commandOf(*next).kind != GroupCommand::Kind::Path) {
     g.queue.erase(g.queue.begin());
-    if (Error e = startCommand(k, g, *next, nowNs); e != Error::None) {
+    if (Error e = startCommand(k, g, *next, nowNs, originNs); e != Error::None) {
       k.finish(*next, nullptr, cycle, false, false, e);
       groupError(k, g, e, Error::None, nowNs, cycle);
     }
@@ -541,9 +590,13 @@ void stepPath(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64
     g.gens[i]->tSet = g.axes()[i]->movement().t(nowNs);
   }
   drainPathEvents(k, g, nullptr, cycle);
-  if (!pathMode(g) && g.state() != GroupState::Stopping) startQueued(k, g, nowNs, cycle);
+  if (!pathMode(g) && g.state() != GroupState::Stopping) startQueued(k, g, nowNs, cycle, nowNs);
 }
 
+}  // namespace
+
+namespace {
+bool stepPtp(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle);
 }  // namespace
 
 void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64_t cycle) {
@@ -558,15 +611,28 @@ void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs,
   if (g.pending) {
     FbSlot* fb = g.pending;
     g.pending = nullptr;
-    if (Error e = startCommand(k, g, *fb, nowNs); e != Error::None) {
+    if (Error e = startCommand(k, g, *fb, nowNs, nowNs); e != Error::None) {
       k.finish(*fb, nullptr, cycle, false, false, e);
       return groupError(k, g, e, Error::None, nowNs, cycle);
     }
   }
   if (pathMode(g)) return stepPath(k, g, nowNs, intervalNs, cycle);
-  if (!g.active || !g.motion) return;
+  // A successor of a dwell starts at the dwell's exact end, maybe between cycles: it is
+  // sampled in this step too (at most a few hand-overs per step).
+  for (int handovers = 0; handovers < 8 && g.active && g.motion; ++handovers)
+    if (!stepPtp(k, g, nowNs, cycle)) return;
+}
+
+namespace {
+
+// One command of the PTP kind (PTP, halt, stop, wait) in this step; true when it ended and
+// its successor started before nowNs (sample again).
+bool stepPtp(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
   // The command in control must be called in every cycle until it ends (error 30).
-  if (g.active->lastCallCycle != cycle) return groupError(k, g, Error::FbWasntCalledDuringMotion, Error::None, nowNs, cycle);
+  if (g.active->lastCallCycle != cycle) {
+    groupError(k, g, Error::FbWasntCalledDuringMotion, Error::None, nowNs, cycle);
+    return false;
+  }
   Kinematic q[kMaxGroupAxes];
   const double t = static_cast<double>(nowNs - g.originNs) * 1e-9;
   g.motion->at(t, q);
@@ -574,9 +640,12 @@ void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs,
     g.gens[i]->state = q[i];
     g.gens[i]->tSet = g.axes()[i]->movement().t(nowNs);
   }
-  if (t < g.motion->duration()) return;
+  if (t < g.motion->duration()) return false;
   // The end is reached in this step: Done; a buffered successor becomes active here and
-  // starts from this instant (its first motion in the next step).
+  // starts from this instant (its first motion in the next step), after a dwell from the
+  // dwell's exact end.
+  const bool wait = commandOf(*g.active).kind == GroupCommand::Kind::Wait;
+  const int64_t endNs = g.originNs + static_cast<int64_t>(std::llround(g.motion->duration() * 1e9));
   FbSlot* done = g.active;
   const bool stop = commandOf(*done).kind == GroupCommand::Kind::Stop;
   g.active = nullptr;
@@ -588,11 +657,15 @@ void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs,
       g.setState(GroupState::Standby);
       releaseMembers(k, g);
     }
-    return;
+    return false;
   }
   k.finish(*done, nullptr, cycle, true, false, Error::None);
-  startQueued(k, g, nowNs, cycle);
+  const int64_t originNs = wait ? std::min(endNs, nowNs) : nowNs;
+  startQueued(k, g, nowNs, cycle, originNs);
+  return g.active && g.motion && g.originNs < nowNs;
 }
+
+}  // namespace
 
 void abortGroupMotion(Kernel& k, AxisGroup& g, const CallCtx& c) {
   endCommands(k, g, &c, c.cycle, Error::None);

@@ -63,6 +63,10 @@ struct PathInputs {
 };
 void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const PathInputs& in, const CallCtx& c);
 
+// SMC_GroupWait: a dwell of waitTime seconds queued like a buffered move; the next
+// buffered command starts exactly when it expires (also between cycles).
+void callGroupWait(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, double waitTime, const CallCtx& c);
+
 // MC_GroupHalt (group to Standby at rest) and MC_GroupStop (GroupStopping while Execute).
 struct GroupStopInputs {
   double deceleration = 0, jerk = 0, accFactor = 1, jerkFactor = 1;
