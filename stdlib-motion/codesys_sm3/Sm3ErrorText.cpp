@@ -142,6 +142,9 @@ constexpr uint16_t kSmcNumbers[] = {
     0x7112,  // AgInvalidGeometry: SMC_AG_INVALID_GEOMETRY
     0x7113,  // AgTransitionNotAllowed: SMC_AG_TRANSITION_NOT_ALLOWED
     0x7114,  // AgModeChangeWhileMoving: SMC_AG_MODE_CHANGE_WHILE_MOVING
+    0x7115,  // AgNotStandby: SMC_AG_NOT_STANDBY
+    0x7116,  // AgNotInterruptible: SMC_AG_NOT_INTERRUPTIBLE
+    0x7117,  // AgNotInterrupted: SMC_AG_NOT_INTERRUPTED
 };
 static_assert(sizeof(kSmcNumbers) / sizeof(kSmcNumbers[0]) == static_cast<size_t>(Error::Count_), "one SMC_ERROR per core fault");
 
@@ -388,6 +391,9 @@ const ErrorText kErrors[] = {
   {28946, "SMC_AG_INVALID_GEOMETRY", "the path is degenerate (zero length, collinear circle points, radius below half the chord, not finite) (stc)"},
   {28947, "SMC_AG_TRANSITION_NOT_ALLOWED", "a transition mode other than TMNone needs a blending buffer mode (stc)"},
   {28948, "SMC_AG_MODE_CHANGE_WHILE_MOVING", "a moving path move cannot be aborted by a PTP move, nor the reverse (MC_GroupHalt first) (stc)"},
+  {28949, "SMC_AG_NOT_STANDBY", "the axis group is not in GroupStandby (or a motion is interrupted) (stc)"},
+  {28950, "SMC_AG_NOT_INTERRUPTIBLE", "no MoveDirect / MoveLinear / MoveCircular runs that could be interrupted (stc)"},
+  {28951, "SMC_AG_NOT_INTERRUPTED", "no interrupted motion matches the continue data (stc)"},
 };
 
 const ErrorText* find(uint16_t id) {

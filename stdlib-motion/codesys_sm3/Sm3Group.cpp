@@ -241,6 +241,39 @@ void MC_GroupReadActualVelocity(sm3::MC_GroupReadActualVelocity* self) {
   groupValues(self, self->Velocity, [](const Axis& ax) { return ax.actVelocity(); });
 }
 
+void MC_GroupSetPosition(sm3::MC_GroupSetPosition* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    callGroupSetPosition(k, fb, g, self->Execute, self->Position.v, self->Relative || self->CoordSystem == 5, c);
+  });
+}
+
+void MC_GroupSetOverride(sm3::MC_GroupSetOverride* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    OverrideInputs in{self->VelFactor, self->AccFactor, self->JerkFactor, self->PathVelFactor, self->PathAccFactor, self->PathJerkFactor};
+    callGroupSetOverride(k, fb, g, self->Enable, in, c);
+  });
+  if (!self->Error) self->Enabled = self->Busy;
+}
+
+// The interruption's token goes into continueData when the interrupt is Done (CODESYS: the
+// continue data is written once Done is TRUE).
+void MC_GroupInterrupt(sm3::MC_GroupInterrupt* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    callGroupInterrupt(k, fb, g, self->Execute, self->__token, self->mvtIdInterruptPosition, c);
+    if (self->Done && self->continueData) {
+      self->continueData->__group = g.index() + 1;
+      self->continueData->__token = self->__token;
+    }
+  });
+}
+
+void MC_GroupContinue(sm3::MC_GroupContinue* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    const bool same = self->continueData && self->continueData->__group == g.index() + 1;
+    callGroupContinue(k, fb, g, self->Execute, same ? self->continueData->__token : 0, c);
+  });
+}
+
 void SMC_GroupWait(sm3::SMC_GroupWait* self) {
   groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) { callGroupWait(k, fb, g, self->Execute, self->WaitTime, c); });
 }
@@ -294,6 +327,10 @@ void registerSm3GroupNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(MC_GroupReadActualPosition, MC_GroupReadActualPosition)
   STC_SM3_NATIVE(MC_GroupReadActualVelocity, MC_GroupReadActualVelocity)
   STC_SM3_NATIVE(SMC_GroupWait, SMC_GroupWait)
+  STC_SM3_NATIVE(MC_GroupSetPosition, MC_GroupSetPosition)
+  STC_SM3_NATIVE(MC_GroupSetOverride, MC_GroupSetOverride)
+  STC_SM3_NATIVE(MC_GroupInterrupt, MC_GroupInterrupt)
+  STC_SM3_NATIVE(MC_GroupContinue, MC_GroupContinue)
   STC_SM3_NATIVE(MC_MoveLinearAbsolute, MC_MoveLinearAbsolute)
   STC_SM3_NATIVE(MC_MoveLinearRelative, MC_MoveLinearRelative)
   STC_SM3_NATIVE(MC_MoveCircularAbsolute, MC_MoveCircularAbsolute)

@@ -112,6 +112,9 @@ FaultClass faultClass(Error e) {
     case Error::AgInterruptedBySingleAxis:
     case Error::AgBlendingNotSupported:
     case Error::AgModeChangeWhileMoving:
+    case Error::AgNotStandby:
+    case Error::AgNotInterruptible:
+    case Error::AgNotInterrupted:
       return FaultClass::WrongState;
     case Error::BufferFull:
       return FaultClass::QueueFull;

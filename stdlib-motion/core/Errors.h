@@ -147,6 +147,9 @@ enum class Error : uint16_t {
   AgInvalidGeometry,      // a path move whose geometry is degenerate (docs/path.md)
   AgTransitionNotAllowed, // a transition mode with Buffered / Aborting
   AgModeChangeWhileMoving,   // aborting a moving path move by a PTP move, or the reverse
+  AgNotStandby,           // MC_GroupSetPosition / MC_GroupContinue outside GroupStandby
+  AgNotInterruptible,     // MC_GroupInterrupt with no MoveDirect / MoveLinear / MoveCircular running
+  AgNotInterrupted,       // MC_GroupContinue without (matching) interrupted motion
   Count_,   // the number of faults (not a fault)
 };
 

@@ -78,6 +78,20 @@ public:
   uint64_t pathAdvancedCycle = 0;
   std::vector<uint32_t> startedInCall;   // Started events of a call, shown by the next step
 
+  // MC_GroupSetOverride: time scaling of every group motion by `rate` (it persists, also
+  // across re-enabling); PTP motions run on group time (groupTime()).
+  double rate = 1;
+  int64_t rateNs = 0;                  // when the rate last changed (or the motion started) ...
+  double rateTau = 0;                  // ... and the motion's time then
+  double motionRate = 1;               // the rate of the running motion (MC_GroupStop: 1)
+
+  // MC_GroupInterrupt / MC_GroupContinue: the interrupted command (PTP: its slot, kept Busy),
+  // the interrupting FB until it is Done, and a token the continue data carries.
+  FbSlot* interrupted = nullptr;
+  FbSlot* interrupter = nullptr;
+  bool pathInterrupted = false;
+  uint32_t interruptToken = 0;
+
   // ---- state machine (used by the group instructions and the kernel step)
   void addAxis(Axis& ax) { axes_.push_back(&ax); }
   void removeAxis(Axis& ax);

@@ -72,6 +72,7 @@ namespace {
 struct GroupCommand : FbBehaviour {
   enum class Kind : uint8_t { Direct, Halt, Stop, Path, Wait } kind = Kind::Direct;
   double waitTime = 0;
+  std::vector<double> targets;   // Direct: absolute targets, fixed at the first start (continue reuses them)
   DirectInputs direct;
   GroupStopInputs stop;
   PathInputs path;
@@ -88,11 +89,29 @@ FbSlot& memberSlot(Kernel& k, AxisGroup& g, size_t i) {
   return s;
 }
 
+// The running PTP motion's own time (override: time scaling from rateNs on).
+double groupTime(const AxisGroup& g, int64_t nowNs) { return g.rateTau + g.motionRate * static_cast<double>(nowNs - g.rateNs) * 1e-9; }
+
 bool controlsMembers(Kernel& k, AxisGroup& g) {
   if (g.gens.size() != g.axes().size()) return false;
   for (size_t i = 0; i < g.axes().size(); ++i)
     if (g.axes()[i]->controller != &memberSlot(k, g, i)) return false;
   return true;
+}
+
+// The members' exact present state (for a planner start or a PTP after a path).
+std::vector<Kinematic> presentStates(Kernel& k, AxisGroup& g, int64_t nowNs) {
+  std::vector<Kinematic> s(g.axes().size());
+  if (g.lastMotion && controlsMembers(k, g)) {
+    Kinematic q[kMaxGroupAxes];
+    g.lastMotion->at(groupTime(g, nowNs), q);
+    std::copy(q, q + s.size(), s.begin());
+  } else if (controlsMembers(k, g)) {
+    for (size_t i = 0; i < s.size(); ++i) s[i] = g.gens[i]->state;
+  } else {
+    for (size_t i = 0; i < s.size(); ++i) s[i] = g.axes()[i]->set();
+  }
+  return s;
 }
 
 // The group takes control of its members (a DirectGenerator each, SynchronizedMotion).
@@ -119,7 +138,8 @@ void releaseMembers(Kernel& k, AxisGroup& g) {
     ms.out.busy = false;
     if (ax.controller != &ms) continue;
     ax.controller = nullptr;
-    ax.holdAt(ax.set().p);
+    // Where the group put it last (this step's set state is written but not yet stepped).
+    ax.holdAt(i < g.gens.size() && g.gens[i] ? g.gens[i]->state.p : ax.set().p);
     if (ax.state() == AxisState::SynchronizedMotion) ax.setState(AxisState::Standstill);
   }
   g.gens.clear();
@@ -149,6 +169,10 @@ void endCommands(Kernel& k, AxisGroup& g, const CallCtx* c, uint64_t cycle, Erro
   end(g.active);
   for (FbSlot* q : g.queue) end(q);
   for (auto& [id, fb] : g.pathCommands) end(fb);
+  if (g.interrupted != g.active) end(g.interrupted);
+  end(g.interrupter);
+  g.interrupted = g.interrupter = nullptr;
+  g.pathInterrupted = false;
   g.pending = g.active = nullptr;
   g.queue.clear();
   g.pathCommands.clear();
@@ -196,17 +220,11 @@ Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, int64_t o
   GroupCommand& cmd = commandOf(fb);
   // The members' exact state now: from the group's latest motion while it controls them
   // (the axes have not been stepped in this cycle yet), else their set states.
-  std::vector<Kinematic> start(g.axes().size());
-  if (g.lastMotion && controlsMembers(k, g)) {
-    Kinematic q[kMaxGroupAxes];
-    g.lastMotion->at(static_cast<double>(nowNs - g.lastOriginNs) * 1e-9, q);
-    std::copy(q, q + start.size(), start.begin());
-  } else if (controlsMembers(k, g)) {   // after a path move: the state written last
-    for (size_t i = 0; i < start.size(); ++i) start[i] = g.gens[i]->state;
-  } else {
-    for (size_t i = 0; i < start.size(); ++i) start[i] = g.axes()[i]->set();
-  }
+  const std::vector<Kinematic> start = presentStates(k, g, nowNs);
   takeMembers(k, g, nowNs);
+  g.rateNs = originNs;
+  g.rateTau = 0;
+  g.motionRate = cmd.kind == GroupCommand::Kind::Stop ? 1.0 : g.rate;   // MC_GroupStop ignores the override
   if (cmd.kind == GroupCommand::Kind::Wait) {
     auto hold = std::make_shared<HoldMotion>();
     hold->at_ = start;
@@ -227,8 +245,12 @@ Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, int64_t o
   std::vector<double> target(g.axes().size());
   if (cmd.kind == GroupCommand::Kind::Direct) {
     if (!memberLimits(g, cmd.direct.velFactor, cmd.direct.accFactor, cmd.direct.jerkFactor, lim)) return Error::AgAxisLimitsMissing;
-    for (size_t i = 0; i < target.size(); ++i)
-      target[i] = cmd.direct.relative ? start[i].p + cmd.direct.position[i] : cmd.direct.position[i];
+    if (cmd.targets.size() != target.size()) {   // the first start (a continue keeps the targets)
+      cmd.targets.resize(target.size());
+      for (size_t i = 0; i < target.size(); ++i)
+        cmd.targets[i] = cmd.direct.relative ? start[i].p + cmd.direct.position[i] : cmd.direct.position[i];
+    }
+    target = cmd.targets;
   } else {
     // Halt / stop: every member brakes to rest along its own profile (the PTP path is
     // not defined); Deceleration and Jerk are the group's, limited by the axes' maxima.
@@ -296,21 +318,6 @@ bool ptpBusy(const AxisGroup& g) {
   for (const FbSlot* q : g.queue)
     if (q->behaviour && static_cast<const GroupCommand&>(*q->behaviour).kind != GroupCommand::Kind::Path) return true;
   return false;
-}
-
-// The members' exact present state (for a planner start or a PTP after a path).
-std::vector<Kinematic> presentStates(Kernel& k, AxisGroup& g, int64_t nowNs) {
-  std::vector<Kinematic> s(g.axes().size());
-  if (g.lastMotion && controlsMembers(k, g)) {
-    Kinematic q[kMaxGroupAxes];
-    g.lastMotion->at(static_cast<double>(nowNs - g.lastOriginNs) * 1e-9, q);
-    std::copy(q, q + s.size(), s.begin());
-  } else if (controlsMembers(k, g)) {
-    for (size_t i = 0; i < s.size(); ++i) s[i] = g.gens[i]->state;
-  } else {
-    for (size_t i = 0; i < s.size(); ++i) s[i] = g.axes()[i]->set();
-  }
-  return s;
 }
 
 path::Planner& plannerOf(AxisGroup& g) {
@@ -590,6 +597,18 @@ void stepPath(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64
     g.gens[i]->tSet = g.axes()[i]->movement().t(nowNs);
   }
   drainPathEvents(k, g, nullptr, cycle);
+  if (g.pathInterrupted && g.interrupter && s.held && !s.moving) {
+    FbSlot* it = g.interrupter;
+    g.interrupter = nullptr;
+    k.finish(*it, nullptr, cycle, true, false, Error::None);
+    for (auto& [id, fb] : g.pathCommands)
+      if (fb->out.active) {
+        fb->out.active = false;
+        fb->sync();
+      }
+    g.setState(GroupState::Standby);
+    return;
+  }
   if (!pathMode(g) && g.state() != GroupState::Stopping) startQueued(k, g, nowNs, cycle, nowNs);
 }
 
@@ -634,7 +653,7 @@ bool stepPtp(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
     return false;
   }
   Kinematic q[kMaxGroupAxes];
-  const double t = static_cast<double>(nowNs - g.originNs) * 1e-9;
+  const double t = groupTime(g, nowNs);
   g.motion->at(t, q);
   for (size_t i = 0; i < g.axes().size() && i < g.gens.size(); ++i) {
     g.gens[i]->state = q[i];
@@ -645,7 +664,18 @@ bool stepPtp(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
   // starts from this instant (its first motion in the next step), after a dwell from the
   // dwell's exact end.
   const bool wait = commandOf(*g.active).kind == GroupCommand::Kind::Wait;
-  const int64_t endNs = g.originNs + static_cast<int64_t>(std::llround(g.motion->duration() * 1e9));
+  const int64_t endNs = g.motionRate > 0 ? g.rateNs + static_cast<int64_t>(std::llround((g.motion->duration() - g.rateTau) / g.motionRate * 1e9)) : nowNs;
+  if (g.interrupter && g.active == g.interrupted) {
+    // MC_GroupInterrupt: at rest; the interrupted move stays Busy, the group stands.
+    FbSlot* it = g.interrupter;
+    g.interrupter = nullptr;
+    g.active = nullptr;
+    g.motion.reset();
+    k.finish(*it, nullptr, cycle, true, false, Error::None);
+    g.setState(GroupState::Standby);
+    releaseMembers(k, g);
+    return false;
+  }
   FbSlot* done = g.active;
   const bool stop = commandOf(*done).kind == GroupCommand::Kind::Stop;
   g.active = nullptr;
@@ -682,6 +712,130 @@ void groupAfterStep(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
     if ((g.active || g.pending) && g.gens.size() == g.axes().size() && ax.controller != &memberSlot(k, g, i))
       return groupError(k, g, Error::AgInterruptedBySingleAxis, Error::None, nowNs, cycle);
   }
+}
+
+void callGroupSetPosition(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const double* position, bool relative,
+                          const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  fb.axis = nullptr;
+  if (!g.enabled()) return k.fail(fb, Error::AgNotEnabled, c);
+  if (g.state() != GroupState::Standby || g.interrupted || g.pathInterrupted) return k.fail(fb, Error::AgNotStandby, c);
+  for (size_t i = 0; i < g.axes().size(); ++i) {
+    const Axis& ax = *g.axes()[i];
+    const double delta = relative ? position[i] : position[i] - ax.reportPosition(ax.set().p);
+    if (!bounds::position(position[i]) || !bounds::position(ax.set().p + delta) || !bounds::position(ax.actPosition() + delta))
+      return k.fail(fb, Error::AgInvalidMoveInputs, c);
+    if (ax.controller || !ax.atRest()) return k.fail(fb, Error::AgSingleAxisActive, c);
+  }
+  for (size_t i = 0; i < g.axes().size(); ++i) {
+    Axis& ax = *g.axes()[i];
+    ax.sample(c.nowNs);
+    ax.shiftPosition(relative ? position[i] : position[i] - ax.reportPosition(ax.set().p));
+  }
+  if (g.planner) g.planner->clear();   // it starts again from the members' positions
+  g.lastMotion.reset();
+  k.finish(fb, &c, c.cycle, true, false, Error::None);
+}
+
+void callGroupSetOverride(Kernel& k, FbSlot& fb, AxisGroup& g, bool enable, const OverrideInputs& in, const CallCtx& c) {
+  fb.execute = enable;
+  fb.lastCallCycle = c.cycle;
+  fb.axis = nullptr;
+  fb.out = FbOutputs{};
+  if (!enable) return fb.sync();   // the last factors stay
+  auto factor = [](double f) { return std::isfinite(f) && f >= 0 && f <= 1; };
+  if (!factor(in.vel) || !factor(in.acc) || !factor(in.jerk) || !factor(in.pathVel) || !factor(in.pathAcc) || !factor(in.pathJerk)) {
+    fb.out.error = true;
+    fb.out.errorId = Error::AgInvalidMoveInputs;
+    return fb.sync();
+  }
+  const double f = std::min({in.vel, in.pathVel, std::sqrt(in.acc), std::sqrt(in.pathAcc), std::cbrt(in.jerk), std::cbrt(in.pathJerk)});
+  if (f != g.rate) {
+    // From now on: the running PTP motion's time runs at f (the same path, velocities x f).
+    const bool stopRunning = g.active && commandOf(*g.active).kind == GroupCommand::Kind::Stop;
+    if (!stopRunning) {
+      g.rateTau = groupTime(g, c.nowNs);
+      g.rateNs = c.nowNs;
+      g.motionRate = f;
+    }
+    g.rate = f;
+    if (g.planner) {
+      advanceToCall(g, c);
+      g.planner->setOverride(f);
+    }
+  }
+  fb.out.busy = true;
+  fb.out.inState = true;   // Enabled
+  fb.sync();
+}
+
+void callGroupInterrupt(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, uint32_t& token, uint32_t& movementId, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  fb.axis = nullptr;
+  if (!g.enabled()) return k.fail(fb, Error::AgNotEnabled, c);
+  if (g.state() == GroupState::ErrorStop) return k.fail(fb, Error::AgInErrorStop, c);
+  // Another interrupt or a group stop in progress: CommandAborted at once (CODESYS).
+  if (g.interrupter || g.state() == GroupState::Stopping) return k.finish(fb, &c, c.cycle, false, true, Error::None);
+  if (pathMode(g)) {
+    advanceToCall(g, c);
+    g.planner->interrupt(0, 0);   // the running segment's deceleration
+    g.pathInterrupted = true;
+  } else if (g.active && commandOf(*g.active).kind == GroupCommand::Kind::Direct) {
+    // PTP: the members brake along their own profiles; the move stays Busy (not Active).
+    FbSlot& mv = *g.active;
+    const std::vector<Kinematic> start = presentStates(k, g, c.nowNs);
+    std::vector<Limits> lim;
+    if (!memberLimits(g, 1, 1, 1, lim)) return k.fail(fb, Error::AgAxisLimitsMissing, c);
+    std::vector<double> target(start.size());
+    for (size_t i = 0; i < start.size(); ++i) {
+      Profile p;
+      planVelocity(start[i], 0, lim[i], p);
+      target[i] = p.end().p;
+    }
+    auto m = std::make_shared<PtpMotion>();
+    if (planPtp(start, target, lim, *m) != PlanStatus::Ok) return k.fail(fb, Error::AgAxisLimitsMissing, c);
+    g.motion = m;
+    g.lastMotion = std::move(m);
+    g.originNs = g.lastOriginNs = g.rateNs = c.nowNs;
+    g.rateTau = 0;
+    g.motionRate = 1;
+    g.interrupted = &mv;
+    mv.out.active = false;
+    mv.sync();
+  } else {
+    return k.fail(fb, Error::AgNotInterruptible, c);
+  }
+  g.interrupter = &fb;
+  token = g.interruptToken = g.interruptToken + 1;
+  movementId = static_cast<uint32_t>(g.activeMovementId);
+  fb.out.busy = true;
+  fb.sync();
+}
+
+void callGroupContinue(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, uint32_t token, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  fb.axis = nullptr;
+  if (g.state() == GroupState::Stopping) return k.finish(fb, &c, c.cycle, false, true, Error::None);
+  if (!g.enabled() || g.state() != GroupState::Standby) return k.fail(fb, Error::AgNotStandby, c);
+  const bool held = g.pathInterrupted || g.interrupted;
+  if (!held || g.interrupter || token != g.interruptToken) return k.fail(fb, Error::AgNotInterrupted, c);
+  if (g.pathInterrupted) {
+    takeMembers(k, g, c.nowNs);
+    g.planner->resume();
+    g.pathStartCycle = c.cycle;   // resumes at this cycle's time (the step samples t = 0)
+    g.pathInterrupted = false;
+    for (auto& [id, p] : g.pathCommands)
+      if (p->out.busy) {
+        p->out.active = true;
+        p->sync();
+        break;
+      }
+    g.setState(GroupState::Moving);
+  } else {
+    g.pending = g.interrupted;   // from rest to its targets again, in this cycle's step
+    g.interrupted = nullptr;
+  }
+  k.finish(fb, &c, c.cycle, true, false, Error::None);
 }
 
 }  // namespace stc::motion

@@ -67,6 +67,24 @@ void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const 
 // buffered command starts exactly when it expires (also between cycles).
 void callGroupWait(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, double waitTime, const CallCtx& c);
 
+// MC_GroupSetPosition: in GroupStandby, the members' positions (absolute or relative).
+void callGroupSetPosition(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const double* position, bool relative,
+                          const CallCtx& c);
+
+// MC_GroupSetOverride (Enable FB): the factors in [0, 1]; the group's motions are time-scaled
+// by the largest factor f that keeps velocities within VelFactor / PathVelFactor, accelerations
+// within Acc / PathAcc (f^2) and jerks within Jerk / PathJerk (f^3).  Returns the applied f.
+struct OverrideInputs {
+  double vel = 1, acc = 1, jerk = 1, pathVel = 1, pathAcc = 1, pathJerk = 1;
+};
+void callGroupSetOverride(Kernel& k, FbSlot& fb, AxisGroup& g, bool enable, const OverrideInputs& in, const CallCtx& c);
+
+// MC_GroupInterrupt: the running MoveDirect/MoveLinear/MoveCircular brakes to rest (on its
+// path) and stays Busy; Done at rest writes `token` (the continue data).  MC_GroupContinue
+// with that token resumes it.
+void callGroupInterrupt(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, uint32_t& token, uint32_t& movementId, const CallCtx& c);
+void callGroupContinue(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, uint32_t token, const CallCtx& c);
+
 // MC_GroupHalt (group to Standby at rest) and MC_GroupStop (GroupStopping while Execute).
 struct GroupStopInputs {
   double deceleration = 0, jerk = 0, accFactor = 1, jerkFactor = 1;
