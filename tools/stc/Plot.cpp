@@ -307,6 +307,79 @@ const char* kBandColors[] = {"#cfe2f3", "#fce5cd", "#d9ead3", "#f4cccc", "#d9d2e
 
 // ------------------------------------------------------------------ the drawing
 
+class Svg {
+public:
+  std::string out;
+  template <typename... A>
+  void add(fmt::format_string<A...> f, A&&... a) {
+    out += fmt::format(f, std::forward<A>(a)...);
+    out += '\n';
+  }
+};
+
+// ------------------------------------------------------------------ pieces every plot uses
+
+// The rows and seconds --from/--to select: rows [r0, r1) lie in [t0, t1].
+struct Window {
+  double t0 = 0, t1 = 1;
+  size_t r0 = 0, r1 = 0;
+};
+
+Window timeWindow(const TraceTable& trace, const PlotOptions& options) {
+  Window w;
+  double tFirst = trace.time.empty() ? 0 : trace.time.front(), tLast = trace.time.empty() ? 1 : trace.time.back();
+  w.t0 = options.from ? *options.from : tFirst;
+  w.t1 = options.to ? *options.to : tLast;
+  if (!(w.t1 > w.t0)) w.t1 = w.t0 + (w.t0 == 0 ? 1 : std::fabs(w.t0) * 0.01);
+  w.r0 = static_cast<size_t>(std::lower_bound(trace.time.begin(), trace.time.end(), w.t0 - 1e-12) - trace.time.begin());
+  w.r1 = static_cast<size_t>(std::upper_bound(trace.time.begin(), trace.time.end(), w.t1 + 1e-12) - trace.time.begin());
+  return w;
+}
+
+// A data range [lo, hi] (lo > hi: no data) with a 5 % margin either side; a
+// flat range is widened around its value.
+void padRange(double& lo, double& hi) {
+  if (!(lo <= hi)) lo = 0, hi = 1;
+  if (hi - lo <= std::max(std::fabs(hi), std::fabs(lo)) * 1e-12) {
+    double d = lo == 0 ? 1 : std::fabs(lo) * 0.1;
+    lo -= d, hi += d;
+  } else {
+    double pad = (hi - lo) * 0.05;
+    lo -= pad, hi += pad;
+  }
+}
+
+// The document, its background, the title and the line under it.
+void openSvg(Svg& s, double width, double height, double left, const std::string& title, const Window& w) {
+  s.add(R"(<?xml version="1.0" encoding="UTF-8"?>)");
+  s.add(R"(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}" font-family="DejaVu Sans, Arial, Helvetica, sans-serif" font-size="11">)",
+        num(width), num(height), num(width), num(height));
+  s.add(R"(<rect width="100%" height="100%" fill="#ffffff"/>)");
+  s.add(R"(<text class="title" x="{}" y="24" font-size="16" font-weight="bold">{}</text>)", num(left), xmlEscape(title));
+  s.add(R"(<text class="subtitle" x="{}" y="40" fill="#666666">{} samples, {} s to {} s</text>)", num(left), w.r1 - w.r0,
+        seconds(w.t0), seconds(w.t1));
+}
+
+// A horizontal grid line from x0 to x1 at `y`, its tick and label left of x0.
+void yTick(Svg& s, double x0, double x1, double y, const std::string& label) {
+  s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e3e3e3"/>)", num(x0), num(y), num(x1), num(y));
+  s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#999999"/>)", num(x0 - 4), num(y), num(x0), num(y));
+  s.add(R"(<text class="ytick" x="{}" y="{}" text-anchor="end">{}</text>)", num(x0 - 6), num(y + 4), label);
+}
+
+// A vertical grid line from y0 to y1 at `x`, its tick and label below y1.
+void xTick(Svg& s, double x, double y0, double y1, const char* gridColor, const std::string& label) {
+  s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}"/>)", num(x), num(y0), num(x), num(y1), gridColor);
+  s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#999999"/>)", num(x), num(y1), num(x), num(y1 + 4));
+  s.add(R"(<text class="xtick" x="{}" y="{}" text-anchor="middle">{}</text>)", num(x), num(y1 + 16), label);
+}
+
+// One legend line: a short stroke in `color` and the text (baseline at y).
+void legendEntry(Svg& s, double x, double y, const char* color, const std::string& text, double maxWidth) {
+  s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="3"/>)", num(x), num(y - 4), num(x + 16), num(y - 4), color);
+  s.add(R"(<text class="legend" x="{}" y="{}">{}</text>)", num(x + 22), num(y), xmlEscape(fitText(text, maxWidth - 22)));
+}
+
 struct Layout {
   double width = 1100;
   double left = 76;
@@ -346,16 +419,6 @@ struct Panel {
   std::vector<size_t> series;   // indices into columns
 };
 
-class Svg {
-public:
-  std::string out;
-  template <typename... A>
-  void add(fmt::format_string<A...> f, A&&... a) {
-    out += fmt::format(f, std::forward<A>(a)...);
-    out += '\n';
-  }
-};
-
 void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Column>& cols, const std::vector<double>& t, double top,
                  double height, int index, const std::vector<double>& timeTicks) {
   const KindInfo& k = kKinds[p.kind];
@@ -365,14 +428,7 @@ void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Colu
       double v = cols[ci].num[r];
       if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
     }
-  if (!(lo <= hi)) lo = 0, hi = 1;
-  if (hi - lo <= std::max(std::fabs(hi), std::fabs(lo)) * 1e-12) {
-    double d = lo == 0 ? 1 : std::fabs(lo) * 0.1;
-    lo -= d, hi += d;
-  } else {
-    double pad = (hi - lo) * 0.05;
-    lo -= pad, hi += pad;
-  }
+  padRange(lo, hi);
   double step = chooseStep(lo, hi, height, 22, false, std::max(2, static_cast<int>(height / 40)));
   auto y = [&](double v) { return top + height - (v - lo) / (hi - lo) * height; };
   std::string title = p.kind != 7 ? k.label : p.series.size() == 1 ? cols[p.series[0]].name : "values";
@@ -380,12 +436,7 @@ void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Colu
   s.add(R"(<g class="panel" data-kind="{}">)", p.kind == 7 ? "other" : k.key);
   s.add(R"(<text class="panel-title" x="{}" y="{}" font-weight="bold">{}</text>)", num(L.left), num(top - 6), xmlEscape(title));
   s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#ffffff" stroke="#999999"/>)", num(L.left), num(top), num(L.plotW), num(height));
-  for (double v : ticks(lo, hi, step)) {
-    double yy = y(v);
-    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e3e3e3"/>)", num(L.left), num(yy), num(L.left + L.plotW), num(yy));
-    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#999999"/>)", num(L.left - 4), num(yy), num(L.left), num(yy));
-    s.add(R"(<text class="ytick" x="{}" y="{}" text-anchor="end">{}</text>)", num(L.left - 6), num(yy + 4), tickLabel(v, step));
-  }
+  for (double v : ticks(lo, hi, step)) yTick(s, L.left, L.left + L.plotW, y(v), tickLabel(v, step));
   for (double tt : timeTicks)
     s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e3e3e3"/>)", num(L.x(tt)), num(top), num(L.x(tt)), num(top + height));
   s.add(R"(<clipPath id="clip{}"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath>)", index, num(L.left), num(top - 1),
@@ -441,9 +492,7 @@ void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Colu
     for (const std::string& l : lines)
       s.add(R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round" points="{}"/>)", color, l);
     s.add("</g>");
-    double lx = L.left + L.plotW + 12;
-    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="3"/>)", num(lx), num(ly - 4), num(lx + 16), num(ly - 4), color);
-    s.add(R"(<text class="legend" x="{}" y="{}">{}</text>)", num(lx + 22), num(ly), xmlEscape(fitText(c.name, L.legend - 34)));
+    legendEntry(s, L.left + L.plotW + 12, ly, color, c.name, L.legend - 12);
     ly += 16;
   }
   s.add("</g>");
@@ -585,12 +634,8 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
   L.plotW = L.width - L.left - L.legend - 8;
   L.pixels = static_cast<int>(L.plotW);
   // The time window.
-  double tFirst = trace.time.empty() ? 0 : trace.time.front(), tLast = trace.time.empty() ? 1 : trace.time.back();
-  L.t0 = options.from ? *options.from : tFirst;
-  L.t1 = options.to ? *options.to : tLast;
-  if (!(L.t1 > L.t0)) L.t1 = L.t0 + (L.t0 == 0 ? 1 : std::fabs(L.t0) * 0.01);
-  L.r0 = static_cast<size_t>(std::lower_bound(trace.time.begin(), trace.time.end(), L.t0 - 1e-12) - trace.time.begin());
-  L.r1 = static_cast<size_t>(std::upper_bound(trace.time.begin(), trace.time.end(), L.t1 + 1e-12) - trace.time.begin());
+  Window w = timeWindow(trace, options);
+  L.t0 = w.t0, L.t1 = w.t1, L.r0 = w.r0, L.r1 = w.r1;
 
   // Panels: one per kind; plain numbers one per variable when there are few.
   std::vector<Panel> panels;
@@ -632,14 +677,7 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
   double height = bottom + 48;
 
   Svg s;
-  s.add(R"(<?xml version="1.0" encoding="UTF-8"?>)");
-  s.add(R"(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}" font-family="DejaVu Sans, Arial, Helvetica, sans-serif" font-size="11">)",
-        num(L.width), num(height), num(L.width), num(height));
-  s.add(R"(<rect width="100%" height="100%" fill="#ffffff"/>)");
-  s.add(R"(<text class="title" x="{}" y="24" font-size="16" font-weight="bold">{}</text>)", num(L.left), xmlEscape(options.title));
-  size_t visible = L.r1 - L.r0;
-  s.add(R"(<text class="subtitle" x="{}" y="40" fill="#666666">{} samples, {} s to {} s</text>)", num(L.left), visible,
-        seconds(L.t0), seconds(L.t1));
+  openSvg(s, L.width, height, L.left, options.title, w);
   if (cols.empty()) s.add(R"(<text x="{}" y="{}">no variables</text>)", num(L.left), num(top0 + 20));
 
   // The shared time axis: grid through every panel and lane, labels at the bottom.
@@ -653,10 +691,7 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
   double gridTop = top0, gridBottom = bottom;
   s.add(R"(<g class="time-axis">)");
   for (double t : ticks(L.t0, L.t1, xstep)) {
-    double x = L.x(t);
-    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#eeeeee"/>)", num(x), num(gridTop), num(x), num(gridBottom));
-    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#999999"/>)", num(x), num(gridBottom), num(x), num(gridBottom + 4));
-    s.add(R"(<text class="xtick" x="{}" y="{}" text-anchor="middle">{}</text>)", num(x), num(gridBottom + 16), tickLabel(t, xstep));
+    xTick(s, L.x(t), gridTop, gridBottom, "#eeeeee", tickLabel(t, xstep));
   }
   s.add(R"(<text class="xlabel" x="{}" y="{}" text-anchor="middle">time [s]</text>)", num(L.left + L.plotW / 2), num(gridBottom + 34));
   s.add("</g>");
