@@ -562,6 +562,151 @@ void drawState(Svg& s, const Layout& L, const Column& c, const std::vector<doubl
   s.add("</g>");
 }
 
+// The column named `name` (case-insensitive), or npos.
+size_t findColumn(const TraceTable& trace, const std::string& name) {
+  for (size_t i = 0; i < trace.names.size(); ++i)
+    if (lower(trace.names[i]) == lower(name)) return i;
+  return std::string::npos;
+}
+
+// The axis label of a path plot: the distinct names, and the unit when all share one.
+std::string pathAxisLabel(const std::vector<const Column*>& cols) {
+  std::vector<std::string> names;
+  int kind = cols.empty() ? 7 : kindOf(*cols[0]);
+  for (const Column* c : cols) {
+    if (std::find(names.begin(), names.end(), c->name) == names.end()) names.push_back(c->name);
+    if (kindOf(*c) != kind) kind = 7;
+  }
+  std::string label;
+  for (const std::string& n : names) label += (label.empty() ? "" : ", ") + n;
+  if (*kKinds[kind].unit) label += fmt::format(" [{}]", kKinds[kind].unit);
+  return label;
+}
+
+// --xy: each pair's Y over its X in one square panel, the same scale on both
+// axes.  A path is one polyline per run of finite samples, thinned to points at
+// least half a pixel apart; its first and last samples in the window are marked.
+std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options) {
+  struct Path {
+    Column x, y;
+    const char* color;
+  };
+  std::vector<Path> paths;
+  for (const auto& [xn, yn] : options.xy) {
+    size_t xi = findColumn(trace, xn), yi = findColumn(trace, yn);
+    if (xi == std::string::npos || yi == std::string::npos) continue;
+    paths.push_back({classify(trace.names[xi], trace.columns[xi]), classify(trace.names[yi], trace.columns[yi]),
+                     kLineColors[paths.size() % 10]});
+  }
+  Window w = timeWindow(trace, options);
+  auto finiteAt = [](const Path& p, size_t r) {
+    return p.x.kind == Kind::Number && p.y.kind == Kind::Number && std::isfinite(p.x.num[r]) && std::isfinite(p.y.num[r]);
+  };
+
+  // The data's box, padded, then both ranges widened to the larger span.
+  double inf = std::numeric_limits<double>::infinity();
+  double xlo = inf, xhi = -inf, ylo = inf, yhi = -inf;
+  for (const Path& p : paths)
+    for (size_t r = w.r0; r < w.r1; ++r)
+      if (finiteAt(p, r)) {
+        xlo = std::min(xlo, p.x.num[r]), xhi = std::max(xhi, p.x.num[r]);
+        ylo = std::min(ylo, p.y.num[r]), yhi = std::max(yhi, p.y.num[r]);
+      }
+  padRange(xlo, xhi);
+  padRange(ylo, yhi);
+  double span = std::max(xhi - xlo, yhi - ylo);
+  for (double* r : {&xlo, &ylo}) {
+    double* hi = r == &xlo ? &xhi : &yhi;
+    double mid = (*r + *hi) / 2;
+    *r = mid - span / 2, *hi = mid + span / 2;
+  }
+
+  const double left = 84, top = 56, side = 560;
+  double maxName = 0;
+  std::vector<std::string> legends;
+  for (const Path& p : paths) legends.push_back(p.x.name + ", " + p.y.name);
+  for (const std::string& l : legends) maxName = std::max(maxName, textWidth(l));
+  double legend = std::clamp(maxName + 44, 150.0, 300.0);
+  double width = left + side + 12 + legend + 8, height = top + side + 48;
+  auto px = [&](double v) { return left + (v - xlo) / span * side; };
+  auto py = [&](double v) { return top + side - (v - ylo) / span * side; };
+
+  Svg s;
+  openSvg(s, width, height, left, options.title, w);
+  s.add(R"(<g class="panel" data-kind="path">)");
+  s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#ffffff" stroke="#999999"/>)", num(left), num(top), num(side), num(side));
+  // One step on both axes keeps the grid square.
+  double step = chooseStep(std::min(xlo, ylo), std::min(xlo, ylo) + span, side, 14, true, std::max(2, static_cast<int>(side / 90)));
+  for (double v : ticks(xlo, xhi, step)) xTick(s, px(v), top, top + side, "#e3e3e3", tickLabel(v, step));
+  for (double v : ticks(ylo, yhi, step)) yTick(s, left, left + side, py(v), tickLabel(v, step));
+  std::vector<const Column*> xs, ys;
+  for (const Path& p : paths) xs.push_back(&p.x), ys.push_back(&p.y);
+  s.add(R"(<text class="xlabel" x="{}" y="{}" text-anchor="middle">{}</text>)", num(left + side / 2), num(top + side + 34),
+        xmlEscape(fitText(pathAxisLabel(xs), side)));
+  s.add(R"s(<text class="ylabel" x="{0}" y="{1}" text-anchor="middle" transform="rotate(-90 {0} {1})">{2}</text>)s", num(16),
+        num(top + side / 2), xmlEscape(fitText(pathAxisLabel(ys), side)));
+  s.add(R"(<clipPath id="clipxy"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath>)", num(left - 1), num(top - 1), num(side + 2),
+        num(side + 2));
+
+  double ly = top + 12, lx = left + side + 12;
+  for (size_t i = 0; i < paths.size(); ++i) {
+    const Path& p = paths[i];
+    std::vector<std::string> lines;
+    std::string pts;
+    double lastX = 0, lastY = 0;
+    std::string pending;   // the latest point skipped by thinning: a run ends on it
+    std::optional<std::pair<double, double>> first, last;
+    auto endLine = [&]() {
+      if (!pending.empty()) pts += pending + ' ';
+      pending.clear();
+      if (!pts.empty()) {
+        pts.pop_back();
+        lines.push_back(std::move(pts));
+      }
+      pts.clear();
+    };
+    for (size_t r = w.r0; r < w.r1; ++r) {
+      if (!finiteAt(p, r)) {
+        endLine();
+        continue;
+      }
+      double x = px(p.x.num[r]), y = py(p.y.num[r]);
+      if (!first) first = {x, y};
+      last = {x, y};
+      std::string pt = num(x) + ',' + num(y);
+      if (!pts.empty() && std::fabs(x - lastX) < 0.5 && std::fabs(y - lastY) < 0.5) {
+        pending = std::move(pt);
+        continue;
+      }
+      pts += pt + ' ';
+      pending.clear();
+      lastX = x, lastY = y;
+    }
+    endLine();
+    s.add(R"s(<g class="path" data-x="{}" data-y="{}" clip-path="url(#clipxy)">)s", xmlEscape(p.x.name), xmlEscape(p.y.name));
+    for (const std::string& l : lines)
+      s.add(R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round" points="{}"/>)", p.color, l);
+    if (first) {
+      s.add(R"(<circle class="start" cx="{}" cy="{}" r="4" fill="#ffffff" stroke="{}" stroke-width="2"/>)", num(first->first),
+            num(first->second), p.color);
+      s.add(R"(<rect class="end" x="{}" y="{}" width="7" height="7" fill="{}"/>)", num(last->first - 3.5), num(last->second - 3.5), p.color);
+    }
+    s.add("</g>");
+    legendEntry(s, lx, ly, p.color, legends[i], legend - 12);
+    ly += 16;
+  }
+  // What the markers mean.
+  ly += 4;
+  s.add(R"(<circle cx="{}" cy="{}" r="4" fill="#ffffff" stroke="#555555" stroke-width="2"/>)", num(lx + 8), num(ly - 4));
+  s.add(R"(<text class="legend-marker" x="{}" y="{}">start</text>)", num(lx + 22), num(ly));
+  ly += 16;
+  s.add(R"(<rect x="{}" y="{}" width="7" height="7" fill="#555555"/>)", num(lx + 4.5), num(ly - 7.5));
+  s.add(R"(<text class="legend-marker" x="{}" y="{}">end</text>)", num(lx + 22), num(ly));
+  s.add("</g>");
+  s.add("</svg>");
+  return std::move(s.out);
+}
+
 }  // namespace
 
 bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, bool& missing) {
@@ -612,6 +757,7 @@ bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, 
 }
 
 std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
+  if (!options.xy.empty()) return renderPathSvg(trace, options);
   // The columns, in --vars order.
   std::vector<Column> cols;
   std::vector<size_t> pick;
@@ -720,16 +866,26 @@ int plotTraceFile(const std::string& csvPath, const std::string& svgPath, const 
   TraceTable t;
   bool missing = false;
   if (!readTraceCsv(csvPath, t, error, missing)) return missing ? 2 : 1;
-  for (const std::string& v : options.vars) {
-    bool found = false;
-    for (const std::string& n : t.names) found = found || lower(n) == lower(v);
-    if (!found) {
-      std::string names;
-      for (const std::string& n : t.names) names += (names.empty() ? "" : ", ") + n;
-      error = fmt::format("--vars: no column '{}' in '{}' (columns: {})", v, csvPath, names.empty() ? "none" : names);
-      return 2;
+  // A name that is not a column: the closest column and the list of them.
+  auto unknown = [&](const char* option, const std::string& v) {
+    std::string names;
+    for (const std::string& n : t.names) names += (names.empty() ? "" : ", ") + n;
+    std::string hint = config::closest(v, t.names);
+    error = fmt::format("{}: no column '{}' in '{}'{} (columns: {})", option, v, csvPath,
+                        hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint), names.empty() ? "none" : names);
+    return 2;
+  };
+  for (const std::string& v : options.vars)
+    if (findColumn(t, v) == std::string::npos) return unknown("--vars", v);
+  for (const auto& [x, y] : options.xy)
+    for (const std::string* v : {&x, &y}) {
+      size_t i = findColumn(t, *v);
+      if (i == std::string::npos) return unknown("--xy", *v);
+      if (classify(t.names[i], t.columns[i]).kind != Kind::Number) {
+        error = fmt::format("--xy: '{}' in '{}' is not a numeric column", t.names[i], csvPath);
+        return 2;
+      }
     }
-  }
   if (options.from && options.to && *options.from >= *options.to) {
     error = "--from must be before --to";
     return 2;
@@ -762,7 +918,11 @@ void PlotCommand::add(CLI::App& app) {
   cmd = app.add_subcommand("plot", "Draw a trace CSV (stc run --trace-out x.csv) as an SVG");
   cmd->add_option("trace", trace, "Trace CSV file")->required();
   cmd->add_option("-o,--output", output, "SVG file (default: the trace's name with .svg)");
-  cmd->add_option("--vars", vars, "Columns to draw: A,B,... (default: all)")->delimiter(',')->allow_extra_args(false);
+  CLI::Option* varsOpt = cmd->add_option("--vars", vars, "Columns to draw: A,B,... (default: all)")->delimiter(',')->allow_extra_args(false);
+  cmd->add_option("--xy", xy, "Draw the path of Y over X (one square panel, equal scale); repeat for more paths")
+      ->type_name("X,Y")
+      ->allow_extra_args(false)
+      ->excludes(varsOpt);
   cmd->add_option("--title", title, "Title (default: the trace file's name)");
   cmd->add_option("--from", from, "Start of the time window (1.5s, 250ms, or seconds)");
   cmd->add_option("--to", to, "End of the time window");
@@ -772,6 +932,15 @@ int PlotCommand::run() const {
   PlotOptions o;
   o.vars = vars;
   o.title = title;
+  for (const std::string& pair : xy) {
+    size_t comma = pair.find(',');
+    std::string x = comma == std::string::npos ? "" : pair.substr(0, comma), y = comma == std::string::npos ? "" : pair.substr(comma + 1);
+    if (x.empty() || y.empty() || y.find(',') != std::string::npos) {
+      std::fprintf(stderr, "stc: error: --xy: '%s' is not a pair of variables X,Y\n", pair.c_str());
+      return 2;
+    }
+    o.xy.emplace_back(x, y);
+  }
   for (auto [opt, text, dst] : {std::tuple{"--from", &from, &o.from}, std::tuple{"--to", &to, &o.to}}) {
     if (text->empty()) continue;
     double v;
