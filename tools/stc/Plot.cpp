@@ -615,11 +615,12 @@ std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options) {
   padRange(xlo, xhi);
   padRange(ylo, yhi);
   double span = std::max(xhi - xlo, yhi - ylo);
-  for (double* r : {&xlo, &ylo}) {
-    double* hi = r == &xlo ? &xhi : &yhi;
-    double mid = (*r + *hi) / 2;
-    *r = mid - span / 2, *hi = mid + span / 2;
-  }
+  auto widen = [span](double& lo, double& hi) {
+    double mid = (lo + hi) / 2;
+    lo = mid - span / 2, hi = mid + span / 2;
+  };
+  widen(xlo, xhi);
+  widen(ylo, yhi);
 
   const double left = 84, top = 56, side = 560;
   double maxName = 0;
@@ -636,7 +637,7 @@ std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options) {
   s.add(R"(<g class="panel" data-kind="path">)");
   s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#ffffff" stroke="#999999"/>)", num(left), num(top), num(side), num(side));
   // One step on both axes keeps the grid square.
-  double step = chooseStep(std::min(xlo, ylo), std::min(xlo, ylo) + span, side, 14, true, std::max(2, static_cast<int>(side / 90)));
+  double step = chooseStep(xlo, xhi, side, 14, true, std::max(2, static_cast<int>(side / 90)));
   for (double v : ticks(xlo, xhi, step)) xTick(s, px(v), top, top + side, "#e3e3e3", tickLabel(v, step));
   for (double v : ticks(ylo, yhi, step)) yTick(s, left, left + side, py(v), tickLabel(v, step));
   std::vector<const Column*> xs, ys;
