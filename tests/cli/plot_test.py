@@ -226,5 +226,156 @@ def case_run():
     print("ok")
 
 
+# --xy: path plots.  A circle of radius 10 around (5, -3), once round in 2 s (1 ms
+# rows): the commanded path, and an "actual" one lagging 0.1 rad with one NaN row.
+CX, CY, R, LAG = 5.0, -3.0, 10.0, 0.1
+
+
+def circle_trace():
+    n = 2000
+    rows = []
+    for i in range(n + 1):
+        a = 2 * math.pi * i / n
+        ax = real(CX + R * math.cos(a - LAG)) if i != 700 else "NaN"
+        rows.append([seconds(i, 1), real(CX + R * math.cos(a)), real(CY + R * math.sin(a)), ax,
+                     real(CY + R * math.sin(a - LAG)), "E_State#Run"])
+    return write_csv("circle.csv", ["X.fSetPosition", "Y.fSetPosition", "X.fActPosition", "Y.fActPosition",
+                                    "MAIN.state"], rows)
+
+
+def axis_map(root):
+    """Data coordinates of SVG points, from the tick labels: (scale x, scale y, to_data)."""
+    def fit(pairs):
+        (p0, v0), (p1, v1) = pairs[0], pairs[-1]
+        a = (p1 - p0) / (v1 - v0)
+        return a, p0 - a * v0
+    xt = [(float(t.get("x")), float(t.text)) for t in root.iter(NS + "text") if t.get("class") == "xtick"]
+    yt = [(float(t.get("y")) - 4, float(t.text)) for t in root.iter(NS + "text") if t.get("class") == "ytick"]
+    expect(len(xt) >= 3 and len(yt) >= 3, f"ticks {xt} {yt}")
+    ax, bx = fit(xt)
+    ay, by = fit(yt)
+    for p, v in xt:
+        expect(abs(ax * v + bx - p) < 0.1, f"x ticks not evenly spaced: {xt}")
+    for p, v in yt:
+        expect(abs(ay * v + by - p) < 0.1, f"y ticks not evenly spaced: {yt}")
+    steps = {round(b[1] - a[1], 9) for a, b in zip(xt, xt[1:])} | {round(b[1] - a[1], 9) for a, b in zip(yt, yt[1:])}
+    step = next(iter(steps))
+    mantissa = step / 10 ** math.floor(math.log10(step))
+    expect(len(steps) == 1 and any(abs(mantissa - m) < 1e-6 for m in (1, 2, 5)),
+           f"tick steps not one round 1/2/5 value: {steps}")
+    return ax, ay, lambda x, y: ((x - bx) / ax, (y - by) / ay)
+
+
+def path_points(g):
+    return [[tuple(map(float, pt.split(","))) for pt in pl.get("points").split()] for pl in g.iter(NS + "polyline")]
+
+
+def marker(g, cls):
+    for e in g.iter():
+        if e.get("class") == cls:
+            if e.tag == NS + "circle":
+                return float(e.get("cx")), float(e.get("cy"))
+            return float(e.get("x")) + 3.5, float(e.get("y")) + 3.5
+    fail(f"no {cls} marker in {g.attrib}")
+
+
+def near(p, q, tol=0.05):
+    return abs(p[0] - q[0]) < tol and abs(p[1] - q[1]) < tol
+
+
+def on_circle(pt, tol=0.05):
+    return abs(math.hypot(pt[0] - CX, pt[1] - CY) - R) < tol
+
+
+def case_xy_circle():
+    csv = circle_trace()
+    svg = os.path.join(TMP, "circle.svg")
+    args = ["plot", csv, "-o", svg, "--xy", "X.fSetPosition,Y.fSetPosition", "--xy", "x.fActPosition,y.FACTPOSITION"]
+    rc, out = stc(*args)
+    expect(rc == 0, f"exit {rc}: {out}")
+    root = parse(svg)
+    expect([g.get("data-kind") for g in groups(root, "panel")] == ["path"], "one path panel")
+    expect(not groups(root, "series") and not groups(root, "lane") and not groups(root, "band"), "no time plot")
+    paths = groups(root, "path")
+    expect([(g.get("data-x"), g.get("data-y")) for g in paths] ==
+           [("X.fSetPosition", "Y.fSetPosition"), ("X.fActPosition", "Y.fActPosition")], f"paths {[g.attrib for g in paths]}")
+    expect(texts(root, "legend") == ["X.fSetPosition, Y.fSetPosition", "X.fActPosition, Y.fActPosition"],
+           f"legend {texts(root, 'legend')}")
+    expect(texts(root, "legend-marker") == ["start", "end"], "marker legend")
+    expect(texts(root, "xlabel") == ["X.fSetPosition, X.fActPosition [u]"], f"x label {texts(root, 'xlabel')}")
+    expect(texts(root, "ylabel") == ["Y.fSetPosition, Y.fActPosition [u]"], f"y label {texts(root, 'ylabel')}")
+    colors = [pl.get("stroke") for g in paths for pl in g.iter(NS + "polyline")]
+    expect(len(set(colors)) == 2, f"path colours {colors}")
+    # The panel is square and both axes have the same scale.
+    box = [r for r in groups(root, "panel")[0].iter(NS + "rect")][0]
+    expect(box.get("width") == box.get("height"), f"panel {box.attrib}")
+    sx, sy, to_data = axis_map(root)
+    expect(abs(sx + sy) < 1e-3 * abs(sx), f"scales differ: x {sx} px/u, y {sy} px/u")
+    # Every drawn point, mapped back through the axes, lies on the circle.
+    cmd, act = path_points(paths[0]), path_points(paths[1])
+    expect(len(cmd) == 1 and len(cmd[0]) > 100, f"commanded path: {len(cmd)} lines")
+    expect(len(act) == 2, f"the NaN row splits the actual path: {len(act)} lines")
+    for line in cmd + act:
+        for x, y in line:
+            expect(on_circle(to_data(x, y)), f"point {x},{y} -> {to_data(x, y)} is off the circle")
+    xs = [x for x, _ in cmd[0]]
+    ys = [y for _, y in cmd[0]]
+    w, h = max(xs) - min(xs), max(ys) - min(ys)
+    expect(abs(w - h) <= 1 and w > 300, f"the circle's box is {w} x {h} px")
+    # Start and end markers: both paths start at angle 0 (minus the lag) and end there.
+    expect(near(to_data(*marker(paths[0], "start")), (CX + R, CY)), "commanded start")
+    expect(near(to_data(*marker(paths[0], "end")), (CX + R, CY)), "commanded end")
+    lagged = (CX + R * math.cos(-LAG), CY + R * math.sin(-LAG))
+    expect(near(to_data(*marker(paths[1], "start")), lagged), "actual start")
+    expect(near(to_data(*marker(paths[1], "end")), lagged), "actual end")
+    # Deterministic: the same bytes again.
+    first = open(svg, "rb").read()
+    rc, out = stc(*args)
+    expect(rc == 0 and open(svg, "rb").read() == first, "a second run differs")
+    print("ok")
+
+
+def case_xy_window():
+    # 0.5 s .. 1 s is the second quarter: from (CX, CY + R) to (CX - R, CY).
+    csv = circle_trace()
+    svg = os.path.join(TMP, "quarter.svg")
+    rc, out = stc("plot", csv, "-o", svg, "--xy", "X.fSetPosition,Y.fSetPosition", "--from", "500ms", "--to", "T#1s")
+    expect(rc == 0, f"exit {rc}: {out}")
+    root = parse(svg)
+    expect(texts(root, "subtitle")[0].startswith("501 samples"), texts(root, "subtitle"))
+    _, _, to_data = axis_map(root)
+    g = groups(root, "path")[0]
+    pts = [to_data(x, y) for line in path_points(g) for x, y in line]
+    for p in pts:
+        expect(on_circle(p) and p[0] <= CX + 0.05 and p[1] >= CY - 0.05, f"{p} is outside the quarter")
+    expect(near(to_data(*marker(g, "start")), (CX, CY + R)), f"start {to_data(*marker(g, 'start'))}")
+    expect(near(to_data(*marker(g, "end")), (CX - R, CY)), f"end {to_data(*marker(g, 'end'))}")
+    # The axes cover the quarter, not the whole circle.
+    xt = [float(t) for t in texts(root, "xtick")]
+    expect(min(xt) >= CX - R - 2 and max(xt) <= CX + 2, f"x ticks {xt}")
+    print("ok")
+
+
+def case_xy_errors():
+    csv = circle_trace()
+    out_svg = os.path.join(TMP, "x.svg")
+    rc, out = stc("plot", csv, "-o", out_svg, "--xy", "X.fSetPositon,Y.fSetPosition")
+    expect(rc == 2 and "--xy: no column 'X.fSetPositon'" in out and "did you mean 'X.fSetPosition'?" in out,
+           f"misspelt --xy name: {rc} {out}")
+    rc, out = stc("plot", csv, "-o", out_svg, "--xy", "X.fSetPosition,MAIN.nothing")
+    expect(rc == 2 and "no column 'MAIN.nothing'" in out and "MAIN.state" in out, f"unknown --xy name: {rc} {out}")
+    rc, out = stc("plot", csv, "-o", out_svg, "--xy", "X.fSetPosition,MAIN.state")
+    expect(rc == 2 and "'MAIN.state'" in out and "not a numeric column" in out, f"non-numeric --xy: {rc} {out}")
+    for bad in ["X.fSetPosition", "X.fSetPosition,", "A,B,C"]:
+        rc, out = stc("plot", csv, "-o", out_svg, "--xy", bad)
+        expect(rc == 2 and "not a pair" in out, f"--xy {bad}: {rc} {out}")
+    rc, out = stc("plot", csv, "-o", out_svg, "--xy", "X.fSetPosition,Y.fSetPosition", "--vars", "X.fSetPosition")
+    expect(rc == 2 and "excludes" in out, f"--xy with --vars: {rc} {out}")
+    rc, out = stc("plot", csv, "-o", out_svg, "--vars", "MAIN.stat")
+    expect(rc == 2 and "did you mean 'MAIN.state'?" in out, f"--vars hint: {rc} {out}")
+    print("ok")
+
+
 {"structure": case_structure, "vars-window": case_vars_window, "downsample": case_downsample,
- "errors": case_errors, "run": case_run}[CASE]()
+ "errors": case_errors, "run": case_run, "xy-circle": case_xy_circle, "xy-window": case_xy_window,
+ "xy-errors": case_xy_errors}[CASE]()

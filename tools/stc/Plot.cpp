@@ -307,6 +307,79 @@ const char* kBandColors[] = {"#cfe2f3", "#fce5cd", "#d9ead3", "#f4cccc", "#d9d2e
 
 // ------------------------------------------------------------------ the drawing
 
+class Svg {
+public:
+  std::string out;
+  template <typename... A>
+  void add(fmt::format_string<A...> f, A&&... a) {
+    out += fmt::format(f, std::forward<A>(a)...);
+    out += '\n';
+  }
+};
+
+// ------------------------------------------------------------------ pieces every plot uses
+
+// The rows and seconds --from/--to select: rows [r0, r1) lie in [t0, t1].
+struct Window {
+  double t0 = 0, t1 = 1;
+  size_t r0 = 0, r1 = 0;
+};
+
+Window timeWindow(const TraceTable& trace, const PlotOptions& options) {
+  Window w;
+  double tFirst = trace.time.empty() ? 0 : trace.time.front(), tLast = trace.time.empty() ? 1 : trace.time.back();
+  w.t0 = options.from ? *options.from : tFirst;
+  w.t1 = options.to ? *options.to : tLast;
+  if (!(w.t1 > w.t0)) w.t1 = w.t0 + (w.t0 == 0 ? 1 : std::fabs(w.t0) * 0.01);
+  w.r0 = static_cast<size_t>(std::lower_bound(trace.time.begin(), trace.time.end(), w.t0 - 1e-12) - trace.time.begin());
+  w.r1 = static_cast<size_t>(std::upper_bound(trace.time.begin(), trace.time.end(), w.t1 + 1e-12) - trace.time.begin());
+  return w;
+}
+
+// A data range [lo, hi] (lo > hi: no data) with a 5 % margin either side; a
+// flat range is widened around its value.
+void padRange(double& lo, double& hi) {
+  if (!(lo <= hi)) lo = 0, hi = 1;
+  if (hi - lo <= std::max(std::fabs(hi), std::fabs(lo)) * 1e-12) {
+    double d = lo == 0 ? 1 : std::fabs(lo) * 0.1;
+    lo -= d, hi += d;
+  } else {
+    double pad = (hi - lo) * 0.05;
+    lo -= pad, hi += pad;
+  }
+}
+
+// The document, its background, the title and the line under it.
+void openSvg(Svg& s, double width, double height, double left, const std::string& title, const Window& w) {
+  s.add(R"(<?xml version="1.0" encoding="UTF-8"?>)");
+  s.add(R"(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}" font-family="DejaVu Sans, Arial, Helvetica, sans-serif" font-size="11">)",
+        num(width), num(height), num(width), num(height));
+  s.add(R"(<rect width="100%" height="100%" fill="#ffffff"/>)");
+  s.add(R"(<text class="title" x="{}" y="24" font-size="16" font-weight="bold">{}</text>)", num(left), xmlEscape(title));
+  s.add(R"(<text class="subtitle" x="{}" y="40" fill="#666666">{} samples, {} s to {} s</text>)", num(left), w.r1 - w.r0,
+        seconds(w.t0), seconds(w.t1));
+}
+
+// A horizontal grid line from x0 to x1 at `y`, its tick and label left of x0.
+void yTick(Svg& s, double x0, double x1, double y, const std::string& label) {
+  s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e3e3e3"/>)", num(x0), num(y), num(x1), num(y));
+  s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#999999"/>)", num(x0 - 4), num(y), num(x0), num(y));
+  s.add(R"(<text class="ytick" x="{}" y="{}" text-anchor="end">{}</text>)", num(x0 - 6), num(y + 4), label);
+}
+
+// A vertical grid line from y0 to y1 at `x`, its tick and label below y1.
+void xTick(Svg& s, double x, double y0, double y1, const char* gridColor, const std::string& label) {
+  s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}"/>)", num(x), num(y0), num(x), num(y1), gridColor);
+  s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#999999"/>)", num(x), num(y1), num(x), num(y1 + 4));
+  s.add(R"(<text class="xtick" x="{}" y="{}" text-anchor="middle">{}</text>)", num(x), num(y1 + 16), label);
+}
+
+// One legend line: a short stroke in `color` and the text (baseline at y).
+void legendEntry(Svg& s, double x, double y, const char* color, const std::string& text, double maxWidth) {
+  s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="3"/>)", num(x), num(y - 4), num(x + 16), num(y - 4), color);
+  s.add(R"(<text class="legend" x="{}" y="{}">{}</text>)", num(x + 22), num(y), xmlEscape(fitText(text, maxWidth - 22)));
+}
+
 struct Layout {
   double width = 1100;
   double left = 76;
@@ -346,16 +419,6 @@ struct Panel {
   std::vector<size_t> series;   // indices into columns
 };
 
-class Svg {
-public:
-  std::string out;
-  template <typename... A>
-  void add(fmt::format_string<A...> f, A&&... a) {
-    out += fmt::format(f, std::forward<A>(a)...);
-    out += '\n';
-  }
-};
-
 void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Column>& cols, const std::vector<double>& t, double top,
                  double height, int index, const std::vector<double>& timeTicks) {
   const KindInfo& k = kKinds[p.kind];
@@ -365,14 +428,7 @@ void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Colu
       double v = cols[ci].num[r];
       if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
     }
-  if (!(lo <= hi)) lo = 0, hi = 1;
-  if (hi - lo <= std::max(std::fabs(hi), std::fabs(lo)) * 1e-12) {
-    double d = lo == 0 ? 1 : std::fabs(lo) * 0.1;
-    lo -= d, hi += d;
-  } else {
-    double pad = (hi - lo) * 0.05;
-    lo -= pad, hi += pad;
-  }
+  padRange(lo, hi);
   double step = chooseStep(lo, hi, height, 22, false, std::max(2, static_cast<int>(height / 40)));
   auto y = [&](double v) { return top + height - (v - lo) / (hi - lo) * height; };
   std::string title = p.kind != 7 ? k.label : p.series.size() == 1 ? cols[p.series[0]].name : "values";
@@ -380,12 +436,7 @@ void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Colu
   s.add(R"(<g class="panel" data-kind="{}">)", p.kind == 7 ? "other" : k.key);
   s.add(R"(<text class="panel-title" x="{}" y="{}" font-weight="bold">{}</text>)", num(L.left), num(top - 6), xmlEscape(title));
   s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#ffffff" stroke="#999999"/>)", num(L.left), num(top), num(L.plotW), num(height));
-  for (double v : ticks(lo, hi, step)) {
-    double yy = y(v);
-    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e3e3e3"/>)", num(L.left), num(yy), num(L.left + L.plotW), num(yy));
-    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#999999"/>)", num(L.left - 4), num(yy), num(L.left), num(yy));
-    s.add(R"(<text class="ytick" x="{}" y="{}" text-anchor="end">{}</text>)", num(L.left - 6), num(yy + 4), tickLabel(v, step));
-  }
+  for (double v : ticks(lo, hi, step)) yTick(s, L.left, L.left + L.plotW, y(v), tickLabel(v, step));
   for (double tt : timeTicks)
     s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e3e3e3"/>)", num(L.x(tt)), num(top), num(L.x(tt)), num(top + height));
   s.add(R"(<clipPath id="clip{}"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath>)", index, num(L.left), num(top - 1),
@@ -441,9 +492,7 @@ void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Colu
     for (const std::string& l : lines)
       s.add(R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round" points="{}"/>)", color, l);
     s.add("</g>");
-    double lx = L.left + L.plotW + 12;
-    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="3"/>)", num(lx), num(ly - 4), num(lx + 16), num(ly - 4), color);
-    s.add(R"(<text class="legend" x="{}" y="{}">{}</text>)", num(lx + 22), num(ly), xmlEscape(fitText(c.name, L.legend - 34)));
+    legendEntry(s, L.left + L.plotW + 12, ly, color, c.name, L.legend - 12);
     ly += 16;
   }
   s.add("</g>");
@@ -513,6 +562,152 @@ void drawState(Svg& s, const Layout& L, const Column& c, const std::vector<doubl
   s.add("</g>");
 }
 
+// The column named `name` (case-insensitive), or npos.
+size_t findColumn(const TraceTable& trace, const std::string& name) {
+  for (size_t i = 0; i < trace.names.size(); ++i)
+    if (lower(trace.names[i]) == lower(name)) return i;
+  return std::string::npos;
+}
+
+// The axis label of a path plot: the distinct names, and the unit when all share one.
+std::string pathAxisLabel(const std::vector<const Column*>& cols) {
+  std::vector<std::string> names;
+  int kind = cols.empty() ? 7 : kindOf(*cols[0]);
+  for (const Column* c : cols) {
+    if (std::find(names.begin(), names.end(), c->name) == names.end()) names.push_back(c->name);
+    if (kindOf(*c) != kind) kind = 7;
+  }
+  std::string label;
+  for (const std::string& n : names) label += (label.empty() ? "" : ", ") + n;
+  if (*kKinds[kind].unit) label += fmt::format(" [{}]", kKinds[kind].unit);
+  return label;
+}
+
+// --xy: each pair's Y over its X in one square panel, the same scale on both
+// axes.  A path is one polyline per run of finite samples, thinned to points at
+// least half a pixel apart; its first and last samples in the window are marked.
+std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options) {
+  struct Path {
+    Column x, y;
+    const char* color;
+  };
+  std::vector<Path> paths;
+  for (const auto& [xn, yn] : options.xy) {
+    size_t xi = findColumn(trace, xn), yi = findColumn(trace, yn);
+    if (xi == std::string::npos || yi == std::string::npos) continue;
+    paths.push_back({classify(trace.names[xi], trace.columns[xi]), classify(trace.names[yi], trace.columns[yi]),
+                     kLineColors[paths.size() % 10]});
+  }
+  Window w = timeWindow(trace, options);
+  auto finiteAt = [](const Path& p, size_t r) {
+    return p.x.kind == Kind::Number && p.y.kind == Kind::Number && std::isfinite(p.x.num[r]) && std::isfinite(p.y.num[r]);
+  };
+
+  // The data's box, padded, then both ranges widened to the larger span.
+  double inf = std::numeric_limits<double>::infinity();
+  double xlo = inf, xhi = -inf, ylo = inf, yhi = -inf;
+  for (const Path& p : paths)
+    for (size_t r = w.r0; r < w.r1; ++r)
+      if (finiteAt(p, r)) {
+        xlo = std::min(xlo, p.x.num[r]), xhi = std::max(xhi, p.x.num[r]);
+        ylo = std::min(ylo, p.y.num[r]), yhi = std::max(yhi, p.y.num[r]);
+      }
+  padRange(xlo, xhi);
+  padRange(ylo, yhi);
+  double span = std::max(xhi - xlo, yhi - ylo);
+  auto widen = [span](double& lo, double& hi) {
+    double mid = (lo + hi) / 2;
+    lo = mid - span / 2, hi = mid + span / 2;
+  };
+  widen(xlo, xhi);
+  widen(ylo, yhi);
+
+  const double left = 84, top = 56, side = 560;
+  double maxName = 0;
+  std::vector<std::string> legends;
+  for (const Path& p : paths) legends.push_back(p.x.name + ", " + p.y.name);
+  for (const std::string& l : legends) maxName = std::max(maxName, textWidth(l));
+  double legend = std::clamp(maxName + 44, 150.0, 300.0);
+  double width = left + side + 12 + legend + 8, height = top + side + 48;
+  auto px = [&](double v) { return left + (v - xlo) / span * side; };
+  auto py = [&](double v) { return top + side - (v - ylo) / span * side; };
+
+  Svg s;
+  openSvg(s, width, height, left, options.title, w);
+  s.add(R"(<g class="panel" data-kind="path">)");
+  s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#ffffff" stroke="#999999"/>)", num(left), num(top), num(side), num(side));
+  // One step on both axes keeps the grid square.
+  double step = chooseStep(xlo, xhi, side, 14, true, std::max(2, static_cast<int>(side / 90)));
+  for (double v : ticks(xlo, xhi, step)) xTick(s, px(v), top, top + side, "#e3e3e3", tickLabel(v, step));
+  for (double v : ticks(ylo, yhi, step)) yTick(s, left, left + side, py(v), tickLabel(v, step));
+  std::vector<const Column*> xs, ys;
+  for (const Path& p : paths) xs.push_back(&p.x), ys.push_back(&p.y);
+  s.add(R"(<text class="xlabel" x="{}" y="{}" text-anchor="middle">{}</text>)", num(left + side / 2), num(top + side + 34),
+        xmlEscape(fitText(pathAxisLabel(xs), side)));
+  s.add(R"s(<text class="ylabel" x="{0}" y="{1}" text-anchor="middle" transform="rotate(-90 {0} {1})">{2}</text>)s", num(16),
+        num(top + side / 2), xmlEscape(fitText(pathAxisLabel(ys), side)));
+  s.add(R"(<clipPath id="clipxy"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath>)", num(left - 1), num(top - 1), num(side + 2),
+        num(side + 2));
+
+  double ly = top + 12, lx = left + side + 12;
+  for (size_t i = 0; i < paths.size(); ++i) {
+    const Path& p = paths[i];
+    std::vector<std::string> lines;
+    std::string pts;
+    double lastX = 0, lastY = 0;
+    std::string pending;   // the latest point skipped by thinning: a run ends on it
+    std::optional<std::pair<double, double>> first, last;
+    auto endLine = [&]() {
+      if (!pending.empty()) pts += pending + ' ';
+      pending.clear();
+      if (!pts.empty()) {
+        pts.pop_back();
+        lines.push_back(std::move(pts));
+      }
+      pts.clear();
+    };
+    for (size_t r = w.r0; r < w.r1; ++r) {
+      if (!finiteAt(p, r)) {
+        endLine();
+        continue;
+      }
+      double x = px(p.x.num[r]), y = py(p.y.num[r]);
+      if (!first) first = {x, y};
+      last = {x, y};
+      std::string pt = num(x) + ',' + num(y);
+      if (!pts.empty() && std::fabs(x - lastX) < 0.5 && std::fabs(y - lastY) < 0.5) {
+        pending = std::move(pt);
+        continue;
+      }
+      pts += pt + ' ';
+      pending.clear();
+      lastX = x, lastY = y;
+    }
+    endLine();
+    s.add(R"s(<g class="path" data-x="{}" data-y="{}" clip-path="url(#clipxy)">)s", xmlEscape(p.x.name), xmlEscape(p.y.name));
+    for (const std::string& l : lines)
+      s.add(R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round" points="{}"/>)", p.color, l);
+    if (first) {
+      s.add(R"(<circle class="start" cx="{}" cy="{}" r="4" fill="#ffffff" stroke="{}" stroke-width="2"/>)", num(first->first),
+            num(first->second), p.color);
+      s.add(R"(<rect class="end" x="{}" y="{}" width="7" height="7" fill="{}"/>)", num(last->first - 3.5), num(last->second - 3.5), p.color);
+    }
+    s.add("</g>");
+    legendEntry(s, lx, ly, p.color, legends[i], legend - 12);
+    ly += 16;
+  }
+  // What the markers mean.
+  ly += 4;
+  s.add(R"(<circle cx="{}" cy="{}" r="4" fill="#ffffff" stroke="#555555" stroke-width="2"/>)", num(lx + 8), num(ly - 4));
+  s.add(R"(<text class="legend-marker" x="{}" y="{}">start</text>)", num(lx + 22), num(ly));
+  ly += 16;
+  s.add(R"(<rect x="{}" y="{}" width="7" height="7" fill="#555555"/>)", num(lx + 4.5), num(ly - 7.5));
+  s.add(R"(<text class="legend-marker" x="{}" y="{}">end</text>)", num(lx + 22), num(ly));
+  s.add("</g>");
+  s.add("</svg>");
+  return std::move(s.out);
+}
+
 }  // namespace
 
 bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, bool& missing) {
@@ -563,6 +758,7 @@ bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, 
 }
 
 std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
+  if (!options.xy.empty()) return renderPathSvg(trace, options);
   // The columns, in --vars order.
   std::vector<Column> cols;
   std::vector<size_t> pick;
@@ -585,12 +781,8 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
   L.plotW = L.width - L.left - L.legend - 8;
   L.pixels = static_cast<int>(L.plotW);
   // The time window.
-  double tFirst = trace.time.empty() ? 0 : trace.time.front(), tLast = trace.time.empty() ? 1 : trace.time.back();
-  L.t0 = options.from ? *options.from : tFirst;
-  L.t1 = options.to ? *options.to : tLast;
-  if (!(L.t1 > L.t0)) L.t1 = L.t0 + (L.t0 == 0 ? 1 : std::fabs(L.t0) * 0.01);
-  L.r0 = static_cast<size_t>(std::lower_bound(trace.time.begin(), trace.time.end(), L.t0 - 1e-12) - trace.time.begin());
-  L.r1 = static_cast<size_t>(std::upper_bound(trace.time.begin(), trace.time.end(), L.t1 + 1e-12) - trace.time.begin());
+  Window w = timeWindow(trace, options);
+  L.t0 = w.t0, L.t1 = w.t1, L.r0 = w.r0, L.r1 = w.r1;
 
   // Panels: one per kind; plain numbers one per variable when there are few.
   std::vector<Panel> panels;
@@ -632,14 +824,7 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
   double height = bottom + 48;
 
   Svg s;
-  s.add(R"(<?xml version="1.0" encoding="UTF-8"?>)");
-  s.add(R"(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}" font-family="DejaVu Sans, Arial, Helvetica, sans-serif" font-size="11">)",
-        num(L.width), num(height), num(L.width), num(height));
-  s.add(R"(<rect width="100%" height="100%" fill="#ffffff"/>)");
-  s.add(R"(<text class="title" x="{}" y="24" font-size="16" font-weight="bold">{}</text>)", num(L.left), xmlEscape(options.title));
-  size_t visible = L.r1 - L.r0;
-  s.add(R"(<text class="subtitle" x="{}" y="40" fill="#666666">{} samples, {} s to {} s</text>)", num(L.left), visible,
-        seconds(L.t0), seconds(L.t1));
+  openSvg(s, L.width, height, L.left, options.title, w);
   if (cols.empty()) s.add(R"(<text x="{}" y="{}">no variables</text>)", num(L.left), num(top0 + 20));
 
   // The shared time axis: grid through every panel and lane, labels at the bottom.
@@ -653,10 +838,7 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
   double gridTop = top0, gridBottom = bottom;
   s.add(R"(<g class="time-axis">)");
   for (double t : ticks(L.t0, L.t1, xstep)) {
-    double x = L.x(t);
-    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#eeeeee"/>)", num(x), num(gridTop), num(x), num(gridBottom));
-    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#999999"/>)", num(x), num(gridBottom), num(x), num(gridBottom + 4));
-    s.add(R"(<text class="xtick" x="{}" y="{}" text-anchor="middle">{}</text>)", num(x), num(gridBottom + 16), tickLabel(t, xstep));
+    xTick(s, L.x(t), gridTop, gridBottom, "#eeeeee", tickLabel(t, xstep));
   }
   s.add(R"(<text class="xlabel" x="{}" y="{}" text-anchor="middle">time [s]</text>)", num(L.left + L.plotW / 2), num(gridBottom + 34));
   s.add("</g>");
@@ -685,16 +867,26 @@ int plotTraceFile(const std::string& csvPath, const std::string& svgPath, const 
   TraceTable t;
   bool missing = false;
   if (!readTraceCsv(csvPath, t, error, missing)) return missing ? 2 : 1;
-  for (const std::string& v : options.vars) {
-    bool found = false;
-    for (const std::string& n : t.names) found = found || lower(n) == lower(v);
-    if (!found) {
-      std::string names;
-      for (const std::string& n : t.names) names += (names.empty() ? "" : ", ") + n;
-      error = fmt::format("--vars: no column '{}' in '{}' (columns: {})", v, csvPath, names.empty() ? "none" : names);
-      return 2;
+  // A name that is not a column: the closest column and the list of them.
+  auto unknown = [&](const char* option, const std::string& v) {
+    std::string names;
+    for (const std::string& n : t.names) names += (names.empty() ? "" : ", ") + n;
+    std::string hint = config::closest(v, t.names);
+    error = fmt::format("{}: no column '{}' in '{}'{} (columns: {})", option, v, csvPath,
+                        hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint), names.empty() ? "none" : names);
+    return 2;
+  };
+  for (const std::string& v : options.vars)
+    if (findColumn(t, v) == std::string::npos) return unknown("--vars", v);
+  for (const auto& [x, y] : options.xy)
+    for (const std::string* v : {&x, &y}) {
+      size_t i = findColumn(t, *v);
+      if (i == std::string::npos) return unknown("--xy", *v);
+      if (classify(t.names[i], t.columns[i]).kind != Kind::Number) {
+        error = fmt::format("--xy: '{}' in '{}' is not a numeric column", t.names[i], csvPath);
+        return 2;
+      }
     }
-  }
   if (options.from && options.to && *options.from >= *options.to) {
     error = "--from must be before --to";
     return 2;
@@ -727,7 +919,11 @@ void PlotCommand::add(CLI::App& app) {
   cmd = app.add_subcommand("plot", "Draw a trace CSV (stc run --trace-out x.csv) as an SVG");
   cmd->add_option("trace", trace, "Trace CSV file")->required();
   cmd->add_option("-o,--output", output, "SVG file (default: the trace's name with .svg)");
-  cmd->add_option("--vars", vars, "Columns to draw: A,B,... (default: all)")->delimiter(',')->allow_extra_args(false);
+  CLI::Option* varsOpt = cmd->add_option("--vars", vars, "Columns to draw: A,B,... (default: all)")->delimiter(',')->allow_extra_args(false);
+  cmd->add_option("--xy", xy, "Draw the path of Y over X (one square panel, equal scale); repeat for more paths")
+      ->type_name("X,Y")
+      ->allow_extra_args(false)
+      ->excludes(varsOpt);
   cmd->add_option("--title", title, "Title (default: the trace file's name)");
   cmd->add_option("--from", from, "Start of the time window (1.5s, 250ms, or seconds)");
   cmd->add_option("--to", to, "End of the time window");
@@ -737,6 +933,15 @@ int PlotCommand::run() const {
   PlotOptions o;
   o.vars = vars;
   o.title = title;
+  for (const std::string& pair : xy) {
+    size_t comma = pair.find(',');
+    std::string x = comma == std::string::npos ? "" : pair.substr(0, comma), y = comma == std::string::npos ? "" : pair.substr(comma + 1);
+    if (x.empty() || y.empty() || y.find(',') != std::string::npos) {
+      std::fprintf(stderr, "stc: error: --xy: '%s' is not a pair of variables X,Y\n", pair.c_str());
+      return 2;
+    }
+    o.xy.emplace_back(x, y);
+  }
   for (auto [opt, text, dst] : {std::tuple{"--from", &from, &o.from}, std::tuple{"--to", &to, &o.to}}) {
     if (text->empty()) continue;
     double v;

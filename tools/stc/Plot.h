@@ -1,12 +1,14 @@
 // `stc plot`: a trace CSV (the file `stc run --trace-out x.csv` writes) drawn
 // as a self-contained SVG.  Numbers become line plots grouped into panels by
 // kind (positions, velocities, ...), BOOLs digital lanes, enums and strings
-// labelled state bands, all on one time axis.  Long traces are reduced to
+// labelled state bands, all on one time axis.  With --xy: the paths of
+// pairs of variables (Y over X) in one square panel.  Long traces are reduced to
 // min/max per pixel column, so steps and extremes survive and the file stays
 // small.  See docs/projects.md ("Traces and plots").
 #pragma once
 
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,9 @@ struct PlotOptions {
   std::vector<std::string> vars;   // columns to draw, in this order (empty: all)
   std::string title;               // empty: the trace file's name
   std::optional<double> from, to;  // seconds
+  // --xy X,Y: instead of the time plot, one square panel (equal scale) with
+  // the path of each pair, Y over X.
+  std::vector<std::pair<std::string, std::string>> xy;
 };
 
 // A trace as read from CSV: the time column in seconds, the other columns as text.
@@ -33,12 +38,13 @@ struct TraceTable {
 // (`missing` true) or is not a trace (no `time` column, bad rows).
 bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, bool& missing);
 
-// The SVG document for `trace` (options.vars must name existing columns).
+// The SVG document for `trace` (options.vars and options.xy must name existing columns).
 std::string renderSvg(const TraceTable& trace, const PlotOptions& options);
 
 // Reads `csvPath`, writes the SVG to `svgPath`.  0 ok; 1 the trace is not
 // readable or empty, or the SVG cannot be written; 2 a bad request (missing
-// trace file, unknown --vars name, --from after --to).  `error` is the message.
+// trace file, unknown --vars or --xy name, a non-numeric --xy column, --from
+// after --to).  `error` is the message.
 int plotTraceFile(const std::string& csvPath, const std::string& svgPath, const PlotOptions& options,
                   std::string& error);
 
@@ -50,6 +56,7 @@ struct PlotCommand {
   std::string trace;
   std::string output;
   std::vector<std::string> vars;
+  std::vector<std::string> xy;   // "X,Y" per --xy
   std::string title;
   std::string from, to;
   CLI::App* cmd = nullptr;
