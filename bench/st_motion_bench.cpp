@@ -6,6 +6,9 @@
 // Second figure: 500 cam-coupled master/slave pairs (MC_MoveVelocity masters,
 // MC_CamIn slaves on a 33-point XYVA cycloid cam, selected once with
 // MC_CamTableSelect), every other FB called from ST in every cycle.  Target: < 100 us.
+// Third figure (issue 15): N axis groups of 3 axes, each running a blended square path
+// (4 MC_MoveLinearRelative, BlendingLow + TMCornerDistance) re-queued whenever it ends, every FB
+// called from ST in every cycle.  Target: < 100 us per cycle for 100 groups.
 // Each figure twice: the programs above never read a field of an axis variable,
 // so the kernel leaves them alone (docs/motion.md, "Mirrors"); the "reads" variant
 // adds one field read per axis, which makes every axis variable mirrored in every cycle.
@@ -61,10 +64,35 @@ std::string camProgram(int n, bool reads) {
   return s.str();
 }
 
+std::string groupProgram(int n) {
+  std::ostringstream s;
+  s << "VAR_GLOBAL\n  Axes : ARRAY[1.." << 3 * n
+    << "] OF AXIS_REF_SM3 := [" << 3 * n << "((fMaxVelocity := 500, fMaxAcceleration := 5000))];\n  Groups : ARRAY[1.." << n
+    << "] OF AXIS_GROUP_REF_SM3;\nEND_VAR\n"
+    << "PROGRAM MAIN\nVAR\n  add : ARRAY[1.." << 3 * n << "] OF MC_AddAxisToGroup;\n  power : ARRAY[1.." << n
+    << "] OF SMC_GroupPower;\n  enable : ARRAY[1.." << n << "] OF MC_GroupEnable;\n  mv : ARRAY[1.." << n
+    << ", 1..4] OF MC_MoveLinearRelative;\n  run : ARRAY[1.." << n << "] OF BOOL;\n  d : ARRAY[1..4] OF SMC_POS_REF;\n"
+    << "  blend : SMC_TRANSITION_PARAMETERS := [2, 0, 0, 0, 0];\n  g, j : DINT;\nEND_VAR\n"
+    << "d[1].c.X := 20; d[1].c.Z := 5; d[2].c.Y := 20; d[2].c.Z := -5; d[3].c.X := -20; d[3].c.Z := 5; d[4].c.Y := -20; d[4].c.Z := -5;\n"
+    << "FOR g := 1 TO " << n << " DO\n"
+    << "  FOR j := 1 TO 3 DO add[(g - 1) * 3 + j](AxisGroup := Groups[g], Axis := Axes[(g - 1) * 3 + j], Execute := TRUE); END_FOR\n"
+    << "  power[g](AxisGroup := Groups[g], Enable := TRUE, bRegulatorOn := TRUE, bDriveStart := TRUE);\n"
+    << "  enable[g](AxisGroup := Groups[g], Execute := power[g].Status);\n"
+    << "  IF mv[g, 4].Done THEN run[g] := FALSE; ELSIF enable[g].Done AND NOT mv[g, 1].Busy AND NOT mv[g, 4].Busy THEN run[g] := TRUE; END_IF\n"
+    << "  mv[g, 1](AxisGroup := Groups[g], Execute := run[g], Distance := d[1], Velocity := 100, Acceleration := 1000, Deceleration := 1000,\n"
+    << "           BufferMode := MC_BUFFER_MODE.Buffered);\n"
+    << "  FOR j := 2 TO 4 DO\n"
+    << "    mv[g, j](AxisGroup := Groups[g], Execute := run[g], Distance := d[j], Velocity := 100, Acceleration := 1000, Deceleration := 1000,\n"
+    << "             BufferMode := MC_BUFFER_MODE.BlendingLow, TransitionMode := MC_TRANSITION_MODE.TMCornerDistance, TransitionParameter := blend);\n"
+    << "  END_FOR\nEND_FOR\nEND_PROGRAM\n";
+  return s.str();
+}
+
 // Seconds of wall time per cycle over `cycles` cycles (after a warm-up).
-double perCycle(int n, uint64_t cycles, bool cams, bool reads) {
-  const std::string file = "/tmp/stc_st_motion_bench_" + std::string(cams ? "cam_" : "") + (reads ? "reads_" : "") + std::to_string(n) + ".st";
-  std::ofstream(file) << (cams ? camProgram(n, reads) : program(n, reads));
+double perCycle(int n, uint64_t cycles, bool cams, bool reads, bool groups = false) {
+  const std::string file = "/tmp/stc_st_motion_bench_" + std::string(groups ? "group_" : cams ? "cam_" : "") + (reads ? "reads_" : "") +
+                           std::to_string(n) + ".st";
+  std::ofstream(file) << (groups ? groupProgram(n) : cams ? camProgram(n, reads) : program(n, reads));
   Compilation comp;
   comp.addPath(file);
   CompileOptions co;
@@ -100,10 +128,10 @@ double perCycle(int n, uint64_t cycles, bool cams, bool reads) {
 
 int main(int argc, char** argv) {
   const uint64_t cycles = argc > 1 ? std::stoull(argv[1]) : 5000;
-  const std::string only = argc > 2 ? argv[2] : "";   // "axes" or "cams": one scenario
+  const std::string only = argc > 2 ? argv[2] : "";   // "axes", "cams" or "groups": one scenario
   for (bool reads : {false, true})
     for (int n : {1, 100, 1000}) {
-      if (only == "cams" || (reads && n != 1000)) continue;
+      if (only == "cams" || only == "groups" || (reads && n != 1000)) continue;
       double best = 1e9;
       for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, false, reads));
       std::printf("%5d axes (MC_Power + MC_MoveAbsolute from ST%s, 1 ms cycle): %8.2f us per cycle (best of 3, %llu cycles)\n", n,
@@ -111,11 +139,18 @@ int main(int argc, char** argv) {
     }
   for (bool reads : {false, true})
     for (int n : {1, 500}) {
-      if (only == "axes" || (reads && n != 500)) continue;
+      if (only == "axes" || only == "groups" || (reads && n != 500)) continue;
       double best = 1e9;
       for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, true, reads));
       std::printf("%5d cam pairs (2 MC_Power, MC_MoveVelocity, MC_CamTableSelect, MC_CamIn from ST%s): %8.2f us per cycle (best of 3, %llu cycles)\n",
                   n, reads ? ", reads fSetPosition" : "", best * 1e6, static_cast<unsigned long long>(cycles));
     }
+  for (int n : {1, 100}) {
+    if (only == "axes" || only == "cams") continue;
+    double best = 1e9;
+    for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, false, false, true));
+    std::printf("%5d groups of 3 axes (blended MC_MoveLinearRelative squares from ST): %8.2f us per cycle (best of 3, %llu cycles)\n", n,
+                best * 1e6, static_cast<unsigned long long>(cycles));
+  }
   return 0;
 }
