@@ -413,6 +413,15 @@ void drainPathEvents(Kernel& k, AxisGroup& g, const CallCtx* c, uint64_t cycle) 
   }
 }
 
+// A move behind running moves of the other kind (PTP / path): queued in the group until they
+// end; Aborting them is refused (the path planner cannot start from motion).
+void queueBehindOtherKind(Kernel& k, AxisGroup& g, FbSlot& fb, BufferMode mode, const CallCtx& c) {
+  if (mode == BufferMode::Aborting) return k.fail(fb, Error::AgModeChangeWhileMoving, c);
+  if (g.queue.size() >= k.profile.queueCapacity) return k.fail(fb, Error::BufferFull, c);
+  g.queue.push_back(&fb);
+  accepted(g, fb);
+}
+
 }  // namespace
 
 void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const PathInputs& in, const CallCtx& c) {
@@ -432,14 +441,9 @@ void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const 
   cmd.path.spec.transition = static_cast<path::TransitionMode>(in.transitionMode);
   cmd.splinePoints.assign(in.spec.points.begin(), in.spec.points.end());
   fb.axis = nullptr;
-  if (ptpBusy(g)) {
-    // Behind a PTP move: buffered until it ends; aborting a moving PTP move by a path move
-    // needs a stop first (docs/motion-groups.md).
-    if (in.bufferMode == BufferMode::Aborting) return k.fail(fb, Error::AgModeChangeWhileMoving, c);
-    if (g.queue.size() >= k.profile.queueCapacity) return k.fail(fb, Error::BufferFull, c);
-    g.queue.push_back(&fb);
-    return accepted(g, fb);
-  }
+  // Behind a PTP move: buffered until it ends; aborting a moving PTP move by a path move
+  // needs a stop first (docs/motion-groups.md).
+  if (ptpBusy(g)) return queueBehindOtherKind(k, g, fb, in.bufferMode, c);
   if (in.bufferMode == BufferMode::Aborting) advanceToCall(g, c);   // the replaced path stops from now
   if (Error e = appendPath(k, g, fb, c.nowNs, c.cycle); e != Error::None) return k.fail(fb, e, c);
   accepted(g, fb);
@@ -468,13 +472,8 @@ void callGroupMoveDirect(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, cons
   cmd.kind = GroupCommand::Kind::Direct;
   cmd.direct = in;
   fb.axis = nullptr;
-  if (pathMode(g)) {
-    // Behind path moves: buffered until the path ends; a moving path is not aborted by a PTP move.
-    if (in.bufferMode == BufferMode::Aborting) return k.fail(fb, Error::AgModeChangeWhileMoving, c);
-    if (g.queue.size() >= k.profile.queueCapacity) return k.fail(fb, Error::BufferFull, c);
-    g.queue.push_back(&fb);
-    return accepted(g, fb);
-  }
+  // Behind path moves: buffered until the path ends; a moving path is not aborted by a PTP move.
+  if (pathMode(g)) return queueBehindOtherKind(k, g, fb, in.bufferMode, c);
   const bool idle = !g.pending && !g.active && g.queue.empty();
   if (in.bufferMode == BufferMode::Aborting || idle) {
     // The running and buffered commands end now; fb starts in this cycle's step.
