@@ -2,6 +2,7 @@
 // an AXIS_GROUP_REF_SM3 to its kernel group, the administration FBs and the
 // group readers.  The semantics live in stdlib-motion/group.
 #include "stdlib-motion/codesys_sm3/Sm3Face.h"
+#include <algorithm>
 #include <cmath>
 
 #include "stdlib-motion/group/GroupMotion.h"
@@ -274,6 +275,51 @@ void MC_GroupContinue(sm3::MC_GroupContinue* self) {
   });
 }
 
+void SMC_GroupTargetPosition(sm3::SMC_GroupTargetPosition* self) {
+  self->Stable = false;
+  self->KinematicConfig = sm3::CONFIGDATA{};
+  self->Position = sm3::SMC_POS_REF{};
+  groupReader(self, [&](AxisGroup& g) {
+    const bool moving = g.state() == GroupState::Moving || g.state() == GroupState::Stopping;
+    if (!g.targetValid && !moving) {   // after a halt or stop, or nothing commanded yet: where the group stands
+      for (size_t i = 0; i < g.axes().size(); ++i) g.target[i] = g.axes()[i]->set().p;
+      g.targetValid = g.enabled();
+    }
+    self->Valid = g.targetValid;
+    self->Stable = g.targetValid && !moving;
+    if (g.targetValid)
+      for (size_t i = 0; i < g.axes().size(); ++i) self->Position.v[i] = g.axes()[i]->reportPosition(g.target[i]);
+  });
+}
+
+void MC_GroupReadActualAcceleration(sm3::MC_GroupReadActualAcceleration* self) {
+  const int64_t now = callContext().nowNs;
+  double vel[kMaxGroupAxes] = {};
+  bool read = false;
+  groupValues(self, self->Acceleration, [&](const Axis&) { return 0.0; });
+  groupReader(self, [&](AxisGroup& g) {
+    read = true;
+    for (size_t i = 0; i < g.axes().size(); ++i) vel[i] = g.axes()[i]->actVelocity();
+    const double dt = static_cast<double>(now - self->__prevNs) * 1e-9;
+    for (size_t i = 0; i < g.axes().size(); ++i)
+      self->Acceleration.v[i] = self->__prevNs >= 0 && dt > 0 ? (vel[i] - self->__prevVel[i]) / dt : 0.0;
+  });
+  if (!read) {
+    self->__prevNs = -1;   // the next enabled call starts over
+    return;
+  }
+  std::copy(vel, vel + kMaxGroupAxes, self->__prevVel);
+  self->__prevNs = now;
+}
+
+void SMC_SetDynamicLimitFactors(sm3::SMC_SetDynamicLimitFactors* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    AxisGroup::LimitFactors f[kMaxGroupAxes];
+    for (size_t i = 0; i < kMaxGroupAxes; ++i) f[i] = {self->VelFactors[i], self->AccFactors[i], self->DecFactors[i], self->JerkFactors[i]};
+    callSetDynamicLimitFactors(k, fb, g, self->Execute, f, c);
+  });
+}
+
 void SMC_GroupWait(sm3::SMC_GroupWait* self) {
   groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) { callGroupWait(k, fb, g, self->Execute, self->WaitTime, c); });
 }
@@ -327,6 +373,9 @@ void registerSm3GroupNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(MC_GroupReadActualPosition, MC_GroupReadActualPosition)
   STC_SM3_NATIVE(MC_GroupReadActualVelocity, MC_GroupReadActualVelocity)
   STC_SM3_NATIVE(SMC_GroupWait, SMC_GroupWait)
+  STC_SM3_NATIVE(SMC_GroupTargetPosition, SMC_GroupTargetPosition)
+  STC_SM3_NATIVE(MC_GroupReadActualAcceleration, MC_GroupReadActualAcceleration)
+  STC_SM3_NATIVE(SMC_SetDynamicLimitFactors, SMC_SetDynamicLimitFactors)
   STC_SM3_NATIVE(MC_GroupSetPosition, MC_GroupSetPosition)
   STC_SM3_NATIVE(MC_GroupSetOverride, MC_GroupSetOverride)
   STC_SM3_NATIVE(MC_GroupInterrupt, MC_GroupInterrupt)

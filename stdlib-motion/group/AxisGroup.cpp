@@ -81,6 +81,7 @@ void callGroupEnable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Ca
     if (inOtherEnabledGroup(k, g, *ax)) return k.fail(fb, Error::AgAxisInOtherGroup, c);
   }
   g.clearErrors();
+  for (auto& f : g.limitFactors) f = AxisGroup::LimitFactors{};
   g.setState(GroupState::Standby);
   done(k, fb, c);
 }

@@ -92,6 +92,15 @@ public:
   bool pathInterrupted = false;
   uint32_t interruptToken = 0;
 
+  // SMC_SetDynamicLimitFactors: per member, x its velocity / acceleration / deceleration / jerk
+  // limits for the moves planned afterwards (all 1 again at MC_GroupEnable).
+  struct LimitFactors { double vel = 1, acc = 1, dec = 1, jerk = 1; };
+  LimitFactors limitFactors[kMaxGroupAxes];
+  bool plannerStale = false;           // the factors changed: a new planner at the next path start
+  // SMC_GroupTargetPosition: the target of the last queued move (members' coordinates).
+  double target[kMaxGroupAxes] = {};
+  bool targetValid = false;
+
   // ---- state machine (used by the group instructions and the kernel step)
   void addAxis(Axis& ax) { axes_.push_back(&ax); }
   void removeAxis(Axis& ax);

@@ -149,11 +149,14 @@ void releaseMembers(Kernel& k, AxisGroup& g) {
 // The members' dynamic limits for group PTP moves: their configured maxima x the factors.
 bool memberLimits(const AxisGroup& g, double vf, double af, double jf, std::vector<Limits>& out) {
   out.clear();
-  for (const Axis* ax : g.axes()) {
-    const AxisConfig& c = ax->config();
+  for (size_t i = 0; i < g.axes().size(); ++i) {
+    const AxisConfig& c = g.axes()[i]->config();
+    const AxisGroup::LimitFactors& f = g.limitFactors[i];
     if (!(c.maxVelocity > 0) || !(c.maxAcceleration > 0)) return false;
     const double dec = c.maxDeceleration > 0 ? c.maxDeceleration : c.maxAcceleration;
-    out.push_back(Limits{c.maxVelocity * vf, c.maxAcceleration * af, dec * af, c.maxJerk > 0 ? c.maxJerk * jf : 0});
+    out.push_back(Limits{c.maxVelocity * vf * f.vel, c.maxAcceleration * af * f.acc, dec * af * f.dec,
+                         c.maxJerk > 0 ? c.maxJerk * jf * f.jerk : 0});
+    // A factor of 0 stops nothing safely: refused at the FB (factors > 0).
   }
   return true;
 }
@@ -288,6 +291,17 @@ void accepted(AxisGroup& g, FbSlot& fb) {
   fb.sync();
 }
 
+// SMC_GroupTargetPosition: the target of a move just accepted.  Relative moves add to the
+// previous queued target, or (aborting, or nothing queued) to the present position.
+void noteTarget(Kernel& k, AxisGroup& g, const double* value, bool relative, bool fromPresent, int64_t nowNs) {
+  if (relative && (fromPresent || !g.targetValid)) {
+    const std::vector<Kinematic> s = presentStates(k, g, nowNs);
+    for (size_t i = 0; i < s.size(); ++i) g.target[i] = s[i].p;
+  }
+  for (size_t i = 0; i < g.axes().size(); ++i) g.target[i] = relative ? g.target[i] + value[i] : value[i];
+  g.targetValid = true;
+}
+
 // The state checks every group motion command makes in its call.
 Error motionRefusal(Kernel& k, AxisGroup& g) {
   if (!g.enabled()) return Error::AgNotEnabled;
@@ -330,8 +344,8 @@ path::Planner& plannerOf(AxisGroup& g) {
     if (all) {
       pc.axes.count = pc.dims;
       for (size_t i = 0; i < g.axes().size(); ++i) {
-        pc.axes.vel[i] = g.axes()[i]->config().maxVelocity;
-        pc.axes.acc[i] = g.axes()[i]->config().maxAcceleration;
+        pc.axes.vel[i] = g.axes()[i]->config().maxVelocity * g.limitFactors[i].vel;
+        pc.axes.acc[i] = g.axes()[i]->config().maxAcceleration * std::min(g.limitFactors[i].acc, g.limitFactors[i].dec);
       }
     }
     g.planner = std::make_unique<path::Planner>(pc);
@@ -352,6 +366,10 @@ Error pathError(const path::AppendResult& r) {
 
 // Hands fb's path move to the planner (from the members' present state when it is idle).
 Error appendPath(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, uint64_t cycle) {
+  if (g.plannerStale && !pathMode(g)) {
+    g.planner.reset();
+    g.plannerStale = false;
+  }
   path::Planner& p = plannerOf(g);
   GroupCommand& cmd = commandOf(fb);
   if (!pathMode(g)) {
@@ -443,9 +461,20 @@ void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const 
   fb.axis = nullptr;
   // Behind a PTP move: buffered until it ends; aborting a moving PTP move by a path move
   // needs a stop first (docs/motion-groups.md).
-  if (ptpBusy(g)) return queueBehindOtherKind(k, g, fb, in.bufferMode, c);
+  double end[kMaxGroupAxes];
+  for (size_t i = 0; i < kMaxGroupAxes; ++i) end[i] = in.spec.end[i];
+  if (ptpBusy(g)) {
+    queueBehindOtherKind(k, g, fb, in.bufferMode, c);
+    if (!fb.out.error) noteTarget(k, g, end, in.spec.relative, false, c.nowNs);
+    return;
+  }
+  const bool wasMoving = pathMode(g);
   if (in.bufferMode == BufferMode::Aborting) advanceToCall(g, c);   // the replaced path stops from now
   if (Error e = appendPath(k, g, fb, c.nowNs, c.cycle); e != Error::None) return k.fail(fb, e, c);
+  noteTarget(k, g, end, in.spec.relative, !wasMoving, c.nowNs);
+  // Aborting a moving path: the new move starts where the old one stops, which is not known
+  // yet, so a relative target is unknown (SMC_GroupTargetPosition not Valid, manual case 1).
+  if (wasMoving && in.bufferMode == BufferMode::Aborting && in.spec.relative) g.targetValid = false;
   accepted(g, fb);
   drainPathEvents(k, g, &c, c.cycle);   // Aborting: the replaced moves end in this call
 }
@@ -473,8 +502,13 @@ void callGroupMoveDirect(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, cons
   cmd.direct = in;
   fb.axis = nullptr;
   // Behind path moves: buffered until the path ends; a moving path is not aborted by a PTP move.
-  if (pathMode(g)) return queueBehindOtherKind(k, g, fb, in.bufferMode, c);
+  if (pathMode(g)) {
+    queueBehindOtherKind(k, g, fb, in.bufferMode, c);
+    if (!fb.out.error) noteTarget(k, g, in.position, in.relative, false, c.nowNs);
+    return;
+  }
   const bool idle = !g.pending && !g.active && g.queue.empty();
+  noteTarget(k, g, in.position, in.relative, in.bufferMode == BufferMode::Aborting || idle, c.nowNs);
   if (in.bufferMode == BufferMode::Aborting || idle) {
     // The running and buffered commands end now; fb starts in this cycle's step.
     endCommands(k, g, &c, c.cycle, Error::None);
@@ -532,6 +566,7 @@ void callGroupBrake(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Gro
   cmd.kind = kind;
   cmd.stop = in;
   fb.axis = nullptr;
+  g.targetValid = false;   // unknown until the group stands
   if (pathMode(g)) {
     // On the path: the planner brakes along it; every queued move (and PTP behind it) ends.
     for (FbSlot* q : g.queue) k.finish(*q, &c, c.cycle, false, true, Error::None);
@@ -834,6 +869,20 @@ void callGroupContinue(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, uint32
     g.pending = g.interrupted;   // from rest to its targets again, in this cycle's step
     g.interrupted = nullptr;
   }
+  k.finish(fb, &c, c.cycle, true, false, Error::None);
+}
+
+void callSetDynamicLimitFactors(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const AxisGroup::LimitFactors* f,
+                                const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  fb.axis = nullptr;
+  auto ok = [](double x) { return std::isfinite(x) && x > 0 && x <= 1; };
+  for (size_t i = 0; i < kMaxGroupAxes; ++i)
+    if (!ok(f[i].vel) || !ok(f[i].acc) || !ok(f[i].dec) || !ok(f[i].jerk)) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  if (!g.enabled()) return k.fail(fb, Error::AgNotEnabled, c);
+  if (g.state() == GroupState::ErrorStop) return k.fail(fb, Error::AgInErrorStop, c);
+  std::copy(f, f + kMaxGroupAxes, g.limitFactors);
+  g.plannerStale = true;   // the next path started from rest plans with the new axis limits
   k.finish(fb, &c, c.cycle, true, false, Error::None);
 }
 

@@ -85,6 +85,11 @@ void callGroupSetOverride(Kernel& k, FbSlot& fb, AxisGroup& g, bool enable, cons
 void callGroupInterrupt(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, uint32_t& token, uint32_t& movementId, const CallCtx& c);
 void callGroupContinue(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, uint32_t token, const CallCtx& c);
 
+// SMC_SetDynamicLimitFactors: factors in (0, 1] per member, for the moves planned afterwards;
+// not in GroupDisabled or GroupErrorStop.
+void callSetDynamicLimitFactors(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const AxisGroup::LimitFactors* f,
+                                const CallCtx& c);
+
 // MC_GroupHalt (group to Standby at rest) and MC_GroupStop (GroupStopping while Execute).
 struct GroupStopInputs {
   double deceleration = 0, jerk = 0, accFactor = 1, jerkFactor = 1;
