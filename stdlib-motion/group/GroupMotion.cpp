@@ -335,6 +335,7 @@ path::Planner& plannerOf(AxisGroup& g) {
       }
     }
     g.planner = std::make_unique<path::Planner>(pc);
+    g.planner->setOverride(g.rate);   // an override set before the first path move
   }
   return *g.planner;
 }
@@ -750,23 +751,29 @@ void callGroupSetOverride(Kernel& k, FbSlot& fb, AxisGroup& g, bool enable, cons
     return fb.sync();
   }
   const double f = std::min({in.vel, in.pathVel, std::sqrt(in.acc), std::sqrt(in.pathAcc), std::cbrt(in.jerk), std::cbrt(in.pathJerk)});
-  if (f != g.rate) {
-    // From now on: the running PTP motion's time runs at f (the same path, velocities x f).
-    const bool stopRunning = g.active && commandOf(*g.active).kind == GroupCommand::Kind::Stop;
-    if (!stopRunning) {
-      g.rateTau = groupTime(g, c.nowNs);
-      g.rateNs = c.nowNs;
-      g.motionRate = f;
-    }
-    g.rate = f;
-    if (g.planner) {
-      advanceToCall(g, c);
-      g.planner->setOverride(f);
-    }
-  }
+  setGroupRate(k, g, f, c);
   fb.out.busy = true;
   fb.out.inState = true;   // Enabled
   fb.sync();
+}
+
+bool setGroupRate(Kernel& k, AxisGroup& g, double f, const CallCtx& c) {
+  (void)k;
+  if (!std::isfinite(f) || f < 0 || f > 1000) return false;
+  if (f == g.rate) return true;
+  // From now on: the running PTP motion's time runs at f (the same path, velocities x f).
+  const bool stopRunning = g.active && commandOf(*g.active).kind == GroupCommand::Kind::Stop;
+  if (!stopRunning) {
+    g.rateTau = groupTime(g, c.nowNs);
+    g.rateNs = c.nowNs;
+    g.motionRate = f;
+  }
+  g.rate = f;
+  if (g.planner) {
+    advanceToCall(g, c);
+    g.planner->setOverride(f);
+  }
+  return true;
 }
 
 void callGroupInterrupt(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, uint32_t& token, uint32_t& movementId, const CallCtx& c) {
