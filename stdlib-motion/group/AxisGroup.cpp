@@ -103,19 +103,24 @@ void disableGroup(Kernel& k, AxisGroup& g, const CallCtx& c) {
 
 Error enableGroupWith(Kernel& k, AxisGroup& g, const std::vector<Axis*>& axes, bool allowPulse, const CallCtx& c) {
   if (axes.empty() || axes.size() > kMaxGroupAxes) return axes.empty() ? Error::AgNoAxes : Error::AgTooManyAxes;
-  if (g.axes() != axes || g.state() == GroupState::ErrorStop) {
-    if (g.enabled()) disableGroup(k, g, c);
+  // The group starts afresh: enabled (also after its last move, in GroupErrorStop), it is
+  // disabled first, its members let go where they stand.
+  if (g.enabled()) disableGroup(k, g, c);
+  if (g.axes() != axes) {
     g.clearAxes();
     for (Axis* ax : axes) g.addAxis(*ax);
     g.planner.reset();
   }
-  if (g.enabled()) return Error::None;
-  // An idle internal group lets go of its members (they stand, nothing is interrupted).
+  // An idle internal group lets go of its members: all its commands ended (also in the
+  // cycle after its last move, before the step returns it to GroupStandby).
+  auto idle = [](const AxisGroup& o) {
+    const bool standing = o.state() == GroupState::Standby || (o.state() == GroupState::Moving && o.ended);
+    return o.internal && standing && !o.pending && !o.active && !o.interrupted && !o.interrupter && !o.pathInterrupted &&
+           o.pathCommands.empty() && o.queue.empty();
+  };
   for (size_t i = 0; i < k.groupCount(); ++i) {
     AxisGroup* o = k.group(static_cast<uint32_t>(i));
-    if (!o || o == &g || !o->internal || o->state() != GroupState::Standby || o->pending || o->active || o->interrupted ||
-        o->pathInterrupted || !o->pathCommands.empty() || !o->queue.empty())
-      continue;
+    if (!o || o == &g || !idle(*o)) continue;
     for (Axis* ax : axes)
       if (o->identOf(*ax) >= 0) {
         disableGroup(k, *o, c);

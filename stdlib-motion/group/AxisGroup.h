@@ -119,9 +119,10 @@ void callRemoveAxisFromGroup(Kernel& k, FbSlot& fb, AxisGroup& g, Axis& ax, bool
 void callUngroupAllAxes(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c);
 void callGroupEnable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c);
 
-// For internal groups (AxisGroup::internal): makes `axes` the members (disabling the group
-// first when they differ or it is in GroupErrorStop) and enables it with MC_GroupEnable's
-// checks; an idle internal group that holds one of the axes is disabled first.
+// For internal groups (AxisGroup::internal): disables the group if it is enabled (its
+// members let go where they stand), makes `axes` the members and enables it with
+// MC_GroupEnable's checks.  An idle internal group that holds one of the axes (all its
+// commands ended) is disabled first, so one block's move can follow another's at once.
 // allowPulse admits pulse (stepper) axes, which MC_GroupEnable refuses.  None when enabled.
 Error enableGroupWith(Kernel& k, AxisGroup& g, const std::vector<Axis*>& axes, bool allowPulse, const CallCtx& c);
 // MC_GroupDisable without an FB: the commands end, moving members brake and are let go.

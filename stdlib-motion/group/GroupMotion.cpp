@@ -538,6 +538,10 @@ void callGroupBrake(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Gro
     // On the path: the planner brakes along it; every queued move (and PTP behind it) ends.
     for (FbSlot* q : g.queue) k.finish(*q, &c, c.cycle, false, true, Error::None);
     g.queue.clear();
+    // An interrupted path is not continued after a halt: the interrupt ends too.
+    if (g.interrupter) k.finish(*g.interrupter, &c, c.cycle, false, true, Error::None);
+    g.interrupter = nullptr;
+    g.pathInterrupted = false;
     advanceToCall(g, c);
     const uint32_t id = g.planner->halt(in.deceleration * in.accFactor, in.jerk * in.jerkFactor);
     drainPathEvents(k, g, &c, c.cycle);
