@@ -515,6 +515,10 @@ void circle3(T* self, sm3::AXIS_REF_SM3* const (&refs)[N], bool relative) {
     path::Vec a{start[0], start[1], start[2]};
     auto dist = [](const path::Vec& p, const path::Vec& q) { return std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]); };
     if (dist(a, s.spec.aux) < 1e-9 || dist(s.spec.aux, s.spec.end) < 1e-9) return kIpoSpaceCircleParaErr;
+    const double u[3] = {s.spec.aux[0] - a[0], s.spec.aux[1] - a[1], s.spec.aux[2] - a[2]};
+    const double w[3] = {s.spec.end[0] - s.spec.aux[0], s.spec.end[1] - s.spec.aux[1], s.spec.end[2] - s.spec.aux[2]};
+    const double cross = std::hypot(u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]);
+    if (cross <= 1e-12 * dist(a, s.spec.aux) * dist(s.spec.aux, s.spec.end)) return kIpoSpaceCircleParaErr;
     s.spec.dyn = dynamicsOf(in);
     s.geoError = kIpoSpaceCircleParaErr;
     segs.push_back(s);
