@@ -313,6 +313,7 @@ void ipoBody(T* self, sm3::AXIS_REF_SM3* const (&refs)[N], const Common& in, Bui
                                                                             : static_cast<int32_t>(smcError(ge)));
     } else {
       setGroupRate(k, g, in.hasRatio ? in.ratio : 1.0, c);
+      r.lineCurrent = segs.front().lineNum;   // the first segment starts in this cycle
       r.segs = std::move(segs);
       r.next = 0;
       r.dec = in.dec;
