@@ -188,4 +188,5 @@ void registerSm3SyncNatives(MotionLibrary& lib);   // Sm3Sync.cpp: gear, phasing
 void registerSm3CamNatives(MotionLibrary& lib);    // Sm3Cam.cpp: cams, tappets, cam files
 void registerSm3TrafoNatives(MotionLibrary& lib);  // Sm3Trafo.cpp: kinematic transformations (SM3_CNC)
 void registerLsFollowNatives(MotionLibrary& lib);   // leadshine/LsFollow.cpp
+void registerLsInterpolationNatives(MotionLibrary& lib);   // leadshine/LsInterpolation.cpp
 }  // namespace stc::motion

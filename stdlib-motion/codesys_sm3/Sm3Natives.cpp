@@ -236,6 +236,7 @@ void registerSm3Natives(MotionLibrary& lib) {
   registerSm3GroupNatives(lib);
   registerSm3TrafoNatives(lib);
   registerLsFollowNatives(lib);
+  registerLsInterpolationNatives(lib);
   STC_SM3_NATIVE(MC_Power, MC_Power)
   STC_SM3_NATIVE(MC_Reset, MC_Reset)
   STC_SM3_NATIVE(MC_MoveAbsolute, moveBody<sm3::MC_MoveAbsolute, FbKind::MoveAbsolute>)

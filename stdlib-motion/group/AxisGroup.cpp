@@ -69,28 +69,74 @@ void callUngroupAllAxes(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const
   done(k, fb, c);
 }
 
+namespace {
+
+// MC_GroupEnable's checks: members, their kind, power and rest, other groups.
+Error enableRefusal(const Kernel& k, const AxisGroup& g, bool allowPulse) {
+  if (g.axes().empty()) return Error::AgNoAxes;
+  for (const Axis* ax : g.axes()) {
+    const AxisKind kind = ax->config().drive.kind;
+    // Servo and virtual (servo) axes only (internal groups: pulse axes too); every member powered and at rest.
+    if (kind != AxisKind::Servo && kind != AxisKind::Virtual && !(allowPulse && kind == AxisKind::Pulse)) return Error::AgAxisNotServo;
+    if (!ax->ready() || ax->state() != AxisState::Standstill) return Error::AgAxisNotReady;
+    if (inOtherEnabledGroup(k, g, *ax)) return Error::AgAxisInOtherGroup;
+  }
+  return Error::None;
+}
+
+}  // namespace
+
 void callGroupEnable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c) {
   if (!k.beginExecute(fb, execute, c)) return fb.sync();
   if (g.enabled()) return done(k, fb, c);   // already enabled: nothing to do
-  if (g.axes().empty()) return k.fail(fb, Error::AgNoAxes, c);
-  for (const Axis* ax : g.axes()) {
-    const AxisKind kind = ax->config().drive.kind;
-    // Servo and virtual (servo) axes only; every member powered and at rest.
-    if (kind != AxisKind::Servo && kind != AxisKind::Virtual) return k.fail(fb, Error::AgAxisNotServo, c);
-    if (!ax->ready() || ax->state() != AxisState::Standstill) return k.fail(fb, Error::AgAxisNotReady, c);
-    if (inOtherEnabledGroup(k, g, *ax)) return k.fail(fb, Error::AgAxisInOtherGroup, c);
-  }
+  if (Error e = enableRefusal(k, g, false); e != Error::None) return k.fail(fb, e, c);
   g.clearErrors();
   for (auto& f : g.limitFactors) f = AxisGroup::LimitFactors{};
   g.setState(GroupState::Standby);
   done(k, fb, c);
 }
 
-void callGroupDisable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c) {
-  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+void disableGroup(Kernel& k, AxisGroup& g, const CallCtx& c) {
   abortGroupMotion(k, g, c);
   g.setState(GroupState::Disabled);
   g.clearErrors();
+}
+
+Error enableGroupWith(Kernel& k, AxisGroup& g, const std::vector<Axis*>& axes, bool allowPulse, const CallCtx& c) {
+  if (axes.empty() || axes.size() > kMaxGroupAxes) return axes.empty() ? Error::AgNoAxes : Error::AgTooManyAxes;
+  // The group starts afresh: enabled (also after its last move, in GroupErrorStop), it is
+  // disabled first, its members let go where they stand.
+  if (g.enabled()) disableGroup(k, g, c);
+  if (g.axes() != axes) {
+    g.clearAxes();
+    for (Axis* ax : axes) g.addAxis(*ax);
+    g.planner.reset();
+  }
+  // An idle internal group lets go of its members: all its commands ended (also in the
+  // cycle after its last move, before the step returns it to GroupStandby).
+  auto idle = [](const AxisGroup& o) {
+    const bool standing = o.state() == GroupState::Standby || (o.state() == GroupState::Moving && o.ended);
+    return o.internal && standing && !o.pending && !o.active && !o.interrupted && !o.interrupter && !o.pathInterrupted &&
+           o.pathCommands.empty() && o.queue.empty();
+  };
+  for (size_t i = 0; i < k.groupCount(); ++i) {
+    AxisGroup* o = k.group(static_cast<uint32_t>(i));
+    if (!o || o == &g || !idle(*o)) continue;
+    for (Axis* ax : axes)
+      if (o->identOf(*ax) >= 0) {
+        disableGroup(k, *o, c);
+        break;
+      }
+  }
+  if (Error e = enableRefusal(k, g, allowPulse); e != Error::None) return e;
+  g.clearErrors();
+  g.setState(GroupState::Standby);
+  return Error::None;
+}
+
+void callGroupDisable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  disableGroup(k, g, c);
   done(k, fb, c);
 }
 

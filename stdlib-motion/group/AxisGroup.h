@@ -50,6 +50,10 @@ public:
   int identOf(const Axis& ax) const;
 
   uint32_t task = UINT32_MAX;          // the owning task (first FB call)
+  // Owned by a block instead of an AXIS_GROUP_REF_SM3 (the Leadshine LS_ interpolation
+  // FBs): enabled for that block's moves only; while it stands idle another internal group
+  // may take its members over (enableGroupWith).
+  bool internal = false;
   uint64_t activeMovementId = 0;       // MC_GroupReadStatus.ActiveMovementId
   uint64_t nextMovementId = 1;         // the id the next accepted movement gets
 
@@ -123,6 +127,15 @@ void callAddAxisToGroup(Kernel& k, FbSlot& fb, AxisGroup& g, Axis& ax, bool exec
 void callRemoveAxisFromGroup(Kernel& k, FbSlot& fb, AxisGroup& g, Axis& ax, bool execute, const CallCtx& c);
 void callUngroupAllAxes(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c);
 void callGroupEnable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c);
+
+// For internal groups (AxisGroup::internal): disables the group if it is enabled (its
+// members let go where they stand), makes `axes` the members and enables it with
+// MC_GroupEnable's checks.  An idle internal group that holds one of the axes (all its
+// commands ended) is disabled first, so one block's move can follow another's at once.
+// allowPulse admits pulse (stepper) axes, which MC_GroupEnable refuses.  None when enabled.
+Error enableGroupWith(Kernel& k, AxisGroup& g, const std::vector<Axis*>& axes, bool allowPulse, const CallCtx& c);
+// MC_GroupDisable without an FB: the commands end, moving members brake and are let go.
+void disableGroup(Kernel& k, AxisGroup& g, const CallCtx& c);
 void callGroupDisable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c);
 void callGroupReset(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c);
 // SMC_GroupPower: MC_Power on every member (Enable FB; Status when every member is ready).

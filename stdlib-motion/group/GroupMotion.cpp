@@ -349,6 +349,7 @@ path::Planner& plannerOf(AxisGroup& g) {
       }
     }
     g.planner = std::make_unique<path::Planner>(pc);
+    g.planner->setOverride(g.rate);   // an override set before the first path move
   }
   return *g.planner;
 }
@@ -571,6 +572,10 @@ void callGroupBrake(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Gro
     // On the path: the planner brakes along it; every queued move (and PTP behind it) ends.
     for (FbSlot* q : g.queue) k.finish(*q, &c, c.cycle, false, true, Error::None);
     g.queue.clear();
+    // An interrupted path is not continued after a halt: the interrupt ends too.
+    if (g.interrupter) k.finish(*g.interrupter, &c, c.cycle, false, true, Error::None);
+    g.interrupter = nullptr;
+    g.pathInterrupted = false;
     advanceToCall(g, c);
     const uint32_t id = g.planner->halt(in.deceleration * in.accFactor, in.jerk * in.jerkFactor);
     drainPathEvents(k, g, &c, c.cycle);
@@ -784,23 +789,29 @@ void callGroupSetOverride(Kernel& k, FbSlot& fb, AxisGroup& g, bool enable, cons
     return fb.sync();
   }
   const double f = std::min({in.vel, in.pathVel, std::sqrt(in.acc), std::sqrt(in.pathAcc), std::cbrt(in.jerk), std::cbrt(in.pathJerk)});
-  if (f != g.rate) {
-    // From now on: the running PTP motion's time runs at f (the same path, velocities x f).
-    const bool stopRunning = g.active && commandOf(*g.active).kind == GroupCommand::Kind::Stop;
-    if (!stopRunning) {
-      g.rateTau = groupTime(g, c.nowNs);
-      g.rateNs = c.nowNs;
-      g.motionRate = f;
-    }
-    g.rate = f;
-    if (g.planner) {
-      advanceToCall(g, c);
-      g.planner->setOverride(f);
-    }
-  }
+  setGroupRate(k, g, f, c);
   fb.out.busy = true;
   fb.out.inState = true;   // Enabled
   fb.sync();
+}
+
+bool setGroupRate(Kernel& k, AxisGroup& g, double f, const CallCtx& c) {
+  (void)k;
+  if (!std::isfinite(f) || f < 0 || f > 1000) return false;
+  if (f == g.rate) return true;
+  // From now on: the running PTP motion's time runs at f (the same path, velocities x f).
+  const bool stopRunning = g.active && commandOf(*g.active).kind == GroupCommand::Kind::Stop;
+  if (!stopRunning) {
+    g.rateTau = groupTime(g, c.nowNs);
+    g.rateNs = c.nowNs;
+    g.motionRate = f;
+  }
+  g.rate = f;
+  if (g.planner) {
+    advanceToCall(g, c);
+    g.planner->setOverride(f);
+  }
+  return true;
 }
 
 void callGroupInterrupt(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, uint32_t& token, uint32_t& movementId, const CallCtx& c) {

@@ -78,6 +78,10 @@ struct OverrideInputs {
   double vel = 1, acc = 1, jerk = 1, pathVel = 1, pathAcc = 1, pathJerk = 1;
 };
 void callGroupSetOverride(Kernel& k, FbSlot& fb, AxisGroup& g, bool enable, const OverrideInputs& in, const CallCtx& c);
+// The time scaling f of the group's motions from this call on (MC_GroupSetOverride's f, or a
+// vendor's speed ratio such as Leadshine's VelRatio up to 2): f finite, 0 <= f <= 1000.
+// Returns false (nothing changed) otherwise.
+bool setGroupRate(Kernel& k, AxisGroup& g, double f, const CallCtx& c);
 
 // MC_GroupInterrupt: the running MoveDirect/MoveLinear/MoveCircular brakes to rest (on its
 // path) and stays Busy; Done at rest writes `token` (the continue data).  MC_GroupContinue

@@ -54,8 +54,26 @@ struct HandwheelInputs {
   uint32_t additiveCycles = 1;
 };
 struct HandwheelOutputs { bool done = false, error = false; int32_t errorId = 0; double deltaPulseUnit = 0; };
-// The Leadshine parameter error (GVL_Err.IpoErrID_ParaErr).
-constexpr int32_t kIpoParaErr = -2;
+// PMC_BasicModule GVL_Err (manual appendix A-3), the ErrorID (DINT) of the PMC_IpoLib blocks.
+// The manual prints IpoErrID_AxisNotStandStill with the code of IpoErrID_SpaceCircleParaErr;
+// stc gives it the next free number, -17 (docs/leadshine-interpolation.md).
+enum IpoErr : int32_t {
+  kIpoParaErr = -2,            // IpoCycle, Jerk, limits 0 (or not the task cycle), inputs not finite
+  kIpoCirDir = -4,             // ArcIpo_dir not 0 / 1
+  kIpoCirMode = -5,            // Circle_Mode not supported
+  kIpoDataType = -6,           // MoveSequence.DataType not 1 / 2
+  kIpoVel = -7,
+  kIpoAcc = -8,
+  kIpoDec = -9,
+  kIpoCirParaErr = -10,        // the parameters do not form a circle (ellipse)
+  kIpoBufferOver = -11,        // more points than the table holds
+  kIpoCirRadErr = -12,         // radius below 0.000001
+  kIpoCirAngelOrg = -13,       // stop angle / centre wrong
+  kIpoCirThreePoint = -14,     // three points do not form an arc
+  kIpoConfigAxisErr = -15,     // an axis twice (or one that cannot be interpolated)
+  kIpoSpaceCircleParaErr = -16,
+  kIpoAxisNotStandStill = -17,
+};
 void callHandwheel(Kernel& k, FbSlot& fb, Axis& ax, const HandwheelInputs& in, HandwheelOutputs& out, const CallCtx& c);
 
 }  // namespace stc::motion::leadshine
