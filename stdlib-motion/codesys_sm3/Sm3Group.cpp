@@ -320,6 +320,19 @@ void SMC_SetDynamicLimitFactors(sm3::SMC_SetDynamicLimitFactors* self) {
   });
 }
 
+template <class T>
+void ancillary(T* self, bool path) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    Limits lim[kMaxGroupAxes];
+    for (size_t i = 0; i < kMaxGroupAxes; ++i)
+      lim[i] = Limits{self->Limits[i].fVelocity, self->Limits[i].fAcceleration, self->Limits[i].fDeceleration, self->Limits[i].fJerk};
+    if (self->ExecutionMode != 0 && self->ExecutionMode != 1) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+    callSetAncillaryLimits(k, fb, g, self->Execute, path, self->ExecutionMode == 0, lim, c);
+  });
+}
+void SMC_GroupSetAncillaryAxisLimits(sm3::SMC_GroupSetAncillaryAxisLimits* self) { ancillary(self, false); }
+void SMC_GroupSetAncillaryPathLimits(sm3::SMC_GroupSetAncillaryPathLimits* self) { ancillary(self, true); }
+
 void SMC_GroupWait(sm3::SMC_GroupWait* self) {
   groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) { callGroupWait(k, fb, g, self->Execute, self->WaitTime, c); });
 }
@@ -376,6 +389,8 @@ void registerSm3GroupNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(SMC_GroupTargetPosition, SMC_GroupTargetPosition)
   STC_SM3_NATIVE(MC_GroupReadActualAcceleration, MC_GroupReadActualAcceleration)
   STC_SM3_NATIVE(SMC_SetDynamicLimitFactors, SMC_SetDynamicLimitFactors)
+  STC_SM3_NATIVE(SMC_GroupSetAncillaryAxisLimits, SMC_GroupSetAncillaryAxisLimits)
+  STC_SM3_NATIVE(SMC_GroupSetAncillaryPathLimits, SMC_GroupSetAncillaryPathLimits)
   STC_SM3_NATIVE(MC_GroupSetPosition, MC_GroupSetPosition)
   STC_SM3_NATIVE(MC_GroupSetOverride, MC_GroupSetOverride)
   STC_SM3_NATIVE(MC_GroupInterrupt, MC_GroupInterrupt)

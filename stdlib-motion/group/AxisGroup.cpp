@@ -91,7 +91,9 @@ void callGroupEnable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Ca
   if (g.enabled()) return done(k, fb, c);   // already enabled: nothing to do
   if (Error e = enableRefusal(k, g, false); e != Error::None) return k.fail(fb, e, c);
   g.clearErrors();
-  for (auto& f : g.limitFactors) f = AxisGroup::LimitFactors{};
+  for (Limits& a : g.anc) a = Limits{};
+  g.ancPath = Limits{};
+  g.ancImmediate = ++g.ancSerial;
   g.setState(GroupState::Standby);
   done(k, fb, c);
 }

@@ -96,10 +96,16 @@ public:
   bool pathInterrupted = false;
   uint32_t interruptToken = 0;
 
-  // SMC_SetDynamicLimitFactors: per member, x its velocity / acceleration / deceleration / jerk
-  // limits for the moves planned afterwards (all 1 again at MC_GroupEnable).
+  // Ancillary limits A (SMC_GroupSetAncillaryAxisLimits, or factor x the axis limit G from
+  // SMC_SetDynamicLimitFactors): a member's limit for a move is min(A, M x G), M the move's
+  // factors; a component of 0 is no ancillary limit.  Cleared at MC_GroupEnable.
   struct LimitFactors { double vel = 1, acc = 1, dec = 1, jerk = 1; };
-  LimitFactors limitFactors[kMaxGroupAxes];
+  Limits anc[kMaxGroupAxes] = {};
+  Limits ancPath = {};                 // SMC_GroupSetAncillaryPathLimits: A of the path
+  // Queued limits apply to the moves commanded after them, immediate ones to every move that
+  // starts after them: a move keeps the limits of its acceptance unless an immediate change
+  // came later (its serial is below ancImmediate).
+  uint64_t ancSerial = 0, ancImmediate = 0;
   bool plannerStale = false;           // the factors changed: a new planner at the next path start
   // SMC_GroupTargetPosition: the target of the last queued move (members' coordinates).
   double target[kMaxGroupAxes] = {};

@@ -73,6 +73,8 @@ struct GroupCommand : FbBehaviour {
   enum class Kind : uint8_t { Direct, Halt, Stop, Path, Wait } kind = Kind::Direct;
   double waitTime = 0;
   std::vector<double> targets;   // Direct: absolute targets, fixed at the first start (continue reuses them)
+  Limits anc[kMaxGroupAxes] = {};   // the ancillary axis limits when it was accepted ...
+  uint64_t ancSerial = 0;           // ... and their serial
   DirectInputs direct;
   GroupStopInputs stop;
   PathInputs path;
@@ -147,16 +149,20 @@ void releaseMembers(Kernel& k, AxisGroup& g) {
 }
 
 // The members' dynamic limits for group PTP moves: their configured maxima x the factors.
-bool memberLimits(const AxisGroup& g, double vf, double af, double jf, std::vector<Limits>& out) {
+// min(A, x) with A = 0 meaning no ancillary limit.
+double capped(double a, double x) { return a > 0 ? std::min(a, x) : x; }
+
+// The members' limits for a group PTP move: L = min(A, M x G) per component (docs/motion-groups.md).
+bool memberLimits(const AxisGroup& g, double vf, double af, double jf, std::vector<Limits>& out, const Limits* anc = nullptr) {
   out.clear();
+  if (!anc) anc = g.anc;
   for (size_t i = 0; i < g.axes().size(); ++i) {
     const AxisConfig& c = g.axes()[i]->config();
-    const AxisGroup::LimitFactors& f = g.limitFactors[i];
     if (!(c.maxVelocity > 0) || !(c.maxAcceleration > 0)) return false;
     const double dec = c.maxDeceleration > 0 ? c.maxDeceleration : c.maxAcceleration;
-    out.push_back(Limits{c.maxVelocity * vf * f.vel, c.maxAcceleration * af * f.acc, dec * af * f.dec,
-                         c.maxJerk > 0 ? c.maxJerk * jf * f.jerk : 0});
-    // A factor of 0 stops nothing safely: refused at the FB (factors > 0).
+    const Limits& a = anc[i];
+    out.push_back(Limits{capped(a.vel, c.maxVelocity * vf), capped(a.acc, c.maxAcceleration * af), capped(a.dec, dec * af),
+                         c.maxJerk > 0 ? capped(a.jerk, c.maxJerk * jf) : 0});
   }
   return true;
 }
@@ -247,7 +253,8 @@ Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, int64_t o
   std::vector<Limits> lim;
   std::vector<double> target(g.axes().size());
   if (cmd.kind == GroupCommand::Kind::Direct) {
-    if (!memberLimits(g, cmd.direct.velFactor, cmd.direct.accFactor, cmd.direct.jerkFactor, lim)) return Error::AgAxisLimitsMissing;
+    const Limits* anc = cmd.ancSerial < g.ancImmediate ? g.anc : cmd.anc;   // an immediate change since: the group's
+    if (!memberLimits(g, cmd.direct.velFactor, cmd.direct.accFactor, cmd.direct.jerkFactor, lim, anc)) return Error::AgAxisLimitsMissing;
     if (cmd.targets.size() != target.size()) {   // the first start (a continue keeps the targets)
       cmd.targets.resize(target.size());
       for (size_t i = 0; i < target.size(); ++i)
@@ -344,8 +351,9 @@ path::Planner& plannerOf(AxisGroup& g) {
     if (all) {
       pc.axes.count = pc.dims;
       for (size_t i = 0; i < g.axes().size(); ++i) {
-        pc.axes.vel[i] = g.axes()[i]->config().maxVelocity * g.limitFactors[i].vel;
-        pc.axes.acc[i] = g.axes()[i]->config().maxAcceleration * std::min(g.limitFactors[i].acc, g.limitFactors[i].dec);
+        const AxisConfig& ac = g.axes()[i]->config();
+        pc.axes.vel[i] = capped(g.anc[i].vel, ac.maxVelocity);
+        pc.axes.acc[i] = capped(g.anc[i].dec, capped(g.anc[i].acc, ac.maxAcceleration));
       }
     }
     g.planner = std::make_unique<path::Planner>(pc);
@@ -456,6 +464,12 @@ void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const 
   GroupCommand& cmd = commandOf(fb);
   cmd.kind = GroupCommand::Kind::Path;
   cmd.path = in;
+  // L = min(A, C) for the path (SMC_GroupSetAncillaryPathLimits); jerk 0 = trapezoidal stays 0.
+  path::Dynamics& dyn = cmd.path.spec.dyn;
+  dyn.vel = capped(g.ancPath.vel, dyn.vel);
+  dyn.acc = capped(g.ancPath.acc, dyn.acc);
+  dyn.dec = capped(g.ancPath.dec, dyn.dec);
+  if (dyn.jerk > 0) dyn.jerk = capped(g.ancPath.jerk, dyn.jerk);
   cmd.path.spec.buffer = static_cast<path::BufferMode>(in.bufferMode);
   cmd.path.spec.transition = static_cast<path::TransitionMode>(in.transitionMode);
   cmd.splinePoints.assign(in.spec.points.begin(), in.spec.points.end());
@@ -501,6 +515,8 @@ void callGroupMoveDirect(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, cons
   GroupCommand& cmd = commandOf(fb);
   cmd.kind = GroupCommand::Kind::Direct;
   cmd.direct = in;
+  std::copy(g.anc, g.anc + kMaxGroupAxes, cmd.anc);
+  cmd.ancSerial = g.ancSerial;
   fb.axis = nullptr;
   // Behind path moves: buffered until the path ends; a moving path is not aborted by a PTP move.
   if (pathMode(g)) {
@@ -892,8 +908,33 @@ void callSetDynamicLimitFactors(Kernel& k, FbSlot& fb, AxisGroup& g, bool execut
     if (!ok(f[i].vel) || !ok(f[i].acc) || !ok(f[i].dec) || !ok(f[i].jerk)) return k.fail(fb, Error::AgInvalidMoveInputs, c);
   if (!g.enabled()) return k.fail(fb, Error::AgNotEnabled, c);
   if (g.state() == GroupState::ErrorStop) return k.fail(fb, Error::AgInErrorStop, c);
-  std::copy(f, f + kMaxGroupAxes, g.limitFactors);
-  g.plannerStale = true;   // the next path started from rest plans with the new axis limits
+  for (size_t i = 0; i < g.axes().size(); ++i) {
+    const AxisConfig& ac = g.axes()[i]->config();
+    const double dec = ac.maxDeceleration > 0 ? ac.maxDeceleration : ac.maxAcceleration;
+    g.anc[i] = Limits{f[i].vel * ac.maxVelocity, f[i].acc * ac.maxAcceleration, f[i].dec * dec, f[i].jerk * ac.maxJerk};
+  }
+  g.ancImmediate = ++g.ancSerial;   // for every move that starts from now on
+  g.plannerStale = true;            // the next path started from rest plans with the new axis limits
+  k.finish(fb, &c, c.cycle, true, false, Error::None);
+}
+
+void callSetAncillaryLimits(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, bool pathLimits, bool immediately, const Limits* lim,
+                           const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  fb.axis = nullptr;
+  // Limits must be > 0 (manual); a component of 0 would stop nothing but block every move.
+  auto ok = [](double x) { return std::isfinite(x) && x > 0 && x <= 1e15; };
+  const size_t n = pathLimits ? 1 : g.axes().size();
+  for (size_t i = 0; i < n; ++i)
+    if (!ok(lim[i].vel) || !ok(lim[i].acc) || !ok(lim[i].dec) || !ok(lim[i].jerk)) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  if (pathLimits) {
+    g.ancPath = lim[0];
+  } else {
+    std::copy(lim, lim + n, g.anc);
+    g.plannerStale = true;
+  }
+  ++g.ancSerial;
+  if (immediately) g.ancImmediate = g.ancSerial;
   k.finish(fb, &c, c.cycle, true, false, Error::None);
 }
 

@@ -94,6 +94,12 @@ void callGroupContinue(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, uint32
 void callSetDynamicLimitFactors(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const AxisGroup::LimitFactors* f,
                                 const CallCtx& c);
 
+// SMC_GroupSetAncillaryAxisLimits (per member) / SMC_GroupSetAncillaryPathLimits (lim[0]):
+// every component > 0.  Immediately: for every move that starts afterwards; Queued: for the
+// moves commanded afterwards.  Path moves take them when they are handed to the planner.
+void callSetAncillaryLimits(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, bool pathLimits, bool immediately, const Limits* lim,
+                           const CallCtx& c);
+
 // MC_GroupHalt (group to Standby at rest) and MC_GroupStop (GroupStopping while Execute).
 struct GroupStopInputs {
   double deceleration = 0, jerk = 0, accFactor = 1, jerkFactor = 1;
