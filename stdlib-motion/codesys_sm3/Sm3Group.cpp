@@ -333,6 +333,22 @@ void ancillary(T* self, bool path) {
 void SMC_GroupSetAncillaryAxisLimits(sm3::SMC_GroupSetAncillaryAxisLimits* self) { ancillary(self, false); }
 void SMC_GroupSetAncillaryPathLimits(sm3::SMC_GroupSetAncillaryPathLimits* self) { ancillary(self, true); }
 
+// Done in the call of the edge with the position the interrupted motion stands at (ACS: the
+// members' coordinates), or Error SMC_AG_NOT_INTERRUPTED.
+void SMC_GroupGetContinuePosition(sm3::SMC_GroupGetContinuePosition* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    if (!k.beginExecute(fb, self->Execute, c)) return fb.sync();
+    fb.axis = nullptr;
+    const bool same = self->continueData && self->continueData->__group == g.index() + 1;
+    double pos[kMaxGroupAxes] = {};
+    if (!continuePosition(g, same ? self->continueData->__token : 0, pos)) return k.fail(fb, Error::AgNotInterrupted, c);
+    self->Position = sm3::SMC_POS_REF{};
+    for (size_t i = 0; i < kMaxGroupAxes; ++i) self->Position.v[i] = pos[i];
+    self->CoordSystem = 0;   // ACS
+    k.finish(fb, &c, c.cycle, true, false, Error::None);
+  });
+}
+
 void SMC_GroupWait(sm3::SMC_GroupWait* self) {
   groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) { callGroupWait(k, fb, g, self->Execute, self->WaitTime, c); });
 }
@@ -386,6 +402,7 @@ void registerSm3GroupNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(MC_GroupReadActualPosition, MC_GroupReadActualPosition)
   STC_SM3_NATIVE(MC_GroupReadActualVelocity, MC_GroupReadActualVelocity)
   STC_SM3_NATIVE(SMC_GroupWait, SMC_GroupWait)
+  STC_SM3_NATIVE(SMC_GroupGetContinuePosition, SMC_GroupGetContinuePosition)
   STC_SM3_NATIVE(SMC_GroupTargetPosition, SMC_GroupTargetPosition)
   STC_SM3_NATIVE(MC_GroupReadActualAcceleration, MC_GroupReadActualAcceleration)
   STC_SM3_NATIVE(SMC_SetDynamicLimitFactors, SMC_SetDynamicLimitFactors)

@@ -95,6 +95,7 @@ public:
   FbSlot* interrupter = nullptr;
   bool pathInterrupted = false;
   uint32_t interruptToken = 0;
+  double continuePos[kMaxGroupAxes] = {};   // where the interrupted motion stands (SMC_GroupGetContinuePosition)
 
   // Ancillary limits A (SMC_GroupSetAncillaryAxisLimits, or factor x the axis limit G from
   // SMC_SetDynamicLimitFactors): a member's limit for a move is min(A, M x G), M the move's

@@ -655,6 +655,7 @@ void stepPath(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64
   if (g.pathInterrupted && g.interrupter && s.held && !s.moving) {
     FbSlot* it = g.interrupter;
     g.interrupter = nullptr;
+    for (size_t i = 0; i < g.axes().size(); ++i) g.continuePos[i] = s.pos[i];
     k.finish(*it, nullptr, cycle, true, false, Error::None);
     for (auto& [id, fb] : g.pathCommands)
       if (fb->out.active) {
@@ -726,6 +727,7 @@ bool stepPtp(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
     g.interrupter = nullptr;
     g.active = nullptr;
     g.motion.reset();
+    for (size_t i = 0; i < g.axes().size(); ++i) g.continuePos[i] = q[i].p;
     k.finish(*it, nullptr, cycle, true, false, Error::None);
     g.setState(GroupState::Standby);
     releaseMembers(k, g);
@@ -936,6 +938,12 @@ void callSetAncillaryLimits(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, b
   ++g.ancSerial;
   if (immediately) g.ancImmediate = g.ancSerial;
   k.finish(fb, &c, c.cycle, true, false, Error::None);
+}
+
+bool continuePosition(const AxisGroup& g, uint32_t token, double* position) {
+  if (!g.enabled() || g.interrupter || !(g.interrupted || g.pathInterrupted) || token != g.interruptToken) return false;
+  std::copy(g.continuePos, g.continuePos + kMaxGroupAxes, position);
+  return true;
 }
 
 }  // namespace stc::motion

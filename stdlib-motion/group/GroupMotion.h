@@ -100,6 +100,10 @@ void callSetDynamicLimitFactors(Kernel& k, FbSlot& fb, AxisGroup& g, bool execut
 void callSetAncillaryLimits(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, bool pathLimits, bool immediately, const Limits* lim,
                            const CallCtx& c);
 
+// SMC_GroupGetContinuePosition: where the motion interrupted under `token` stands (members'
+// coordinates); false when no such interruption can be continued.
+bool continuePosition(const AxisGroup& g, uint32_t token, double* position);
+
 // MC_GroupHalt (group to Standby at rest) and MC_GroupStop (GroupStopping while Execute).
 struct GroupStopInputs {
   double deceleration = 0, jerk = 0, accFactor = 1, jerkFactor = 1;
