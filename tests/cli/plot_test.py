@@ -376,6 +376,26 @@ def case_xy_errors():
     print("ok")
 
 
+# stc run --plot --xy: the path of a group's circle, drawn after the run.
+def case_run_xy():
+    st = os.path.join(SRC, "tests/run/group_path_line_circle.st")
+    svg = os.path.join(TMP, "run_xy.svg")
+    rc, out = stc("run", st, "--lib", "codesys_sm3", "--for", "12s", "--trace", "X.fSetPosition,Y.fSetPosition",
+                  "--plot", svg, "--xy", "X.fSetPosition,Y.fSetPosition")
+    expect(rc == 0, f"run --plot --xy: {rc} {out}")
+    root = parse(svg)
+    expect([g.get("data-kind") for g in groups(root, "panel")] == ["path"], "one path panel")
+    paths = groups(root, "path")
+    expect(len(paths) == 1 and paths[0].get("data-x") == "X.fSetPosition" and paths[0].get("data-y") == "Y.fSetPosition",
+           "the pair drawn")
+    rc, out = stc("run", st, "--lib", "codesys_sm3", "--for", "1s", "--trace", "X.fSetPosition", "--plot", svg,
+                  "--xy", "X.fSetPosition")
+    expect(rc == 2 and "not a pair" in out and "MAIN." not in out, f"malformed --xy refused before the run: {rc} {out}")
+    rc, out = stc("run", st, "--lib", "codesys_sm3", "--for", "1s", "--xy", "A,B")
+    expect(rc == 2 and "--xy requires --plot" in out, f"--xy without --plot: {rc} {out}")
+    print("ok")
+
+
 {"structure": case_structure, "vars-window": case_vars_window, "downsample": case_downsample,
  "errors": case_errors, "run": case_run, "xy-circle": case_xy_circle, "xy-window": case_xy_window,
- "xy-errors": case_xy_errors}[CASE]()
+ "xy-errors": case_xy_errors, "run-xy": case_run_xy}[CASE]()

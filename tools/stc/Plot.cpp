@@ -929,18 +929,27 @@ void PlotCommand::add(CLI::App& app) {
   cmd->add_option("--to", to, "End of the time window");
 }
 
+bool parseXyPairs(const std::vector<std::string>& pairs, PlotOptions& options, std::string& error) {
+  for (const std::string& pair : pairs) {
+    size_t comma = pair.find(',');
+    std::string x = comma == std::string::npos ? "" : pair.substr(0, comma), y = comma == std::string::npos ? "" : pair.substr(comma + 1);
+    if (x.empty() || y.empty() || y.find(',') != std::string::npos) {
+      error = "--xy: '" + pair + "' is not a pair of variables X,Y";
+      return false;
+    }
+    options.xy.emplace_back(x, y);
+  }
+  return true;
+}
+
 int PlotCommand::run() const {
   PlotOptions o;
   o.vars = vars;
   o.title = title;
-  for (const std::string& pair : xy) {
-    size_t comma = pair.find(',');
-    std::string x = comma == std::string::npos ? "" : pair.substr(0, comma), y = comma == std::string::npos ? "" : pair.substr(comma + 1);
-    if (x.empty() || y.empty() || y.find(',') != std::string::npos) {
-      std::fprintf(stderr, "stc: error: --xy: '%s' is not a pair of variables X,Y\n", pair.c_str());
-      return 2;
-    }
-    o.xy.emplace_back(x, y);
+  std::string xyError;
+  if (!parseXyPairs(xy, o, xyError)) {
+    std::fprintf(stderr, "stc: error: %s\n", xyError.c_str());
+    return 2;
   }
   for (auto [opt, text, dst] : {std::tuple{"--from", &from, &o.from}, std::tuple{"--to", &to, &o.to}}) {
     if (text->empty()) continue;

@@ -52,6 +52,9 @@ int plotTraceFile(const std::string& csvPath, const std::string& svgPath, const 
 bool parseSeconds(const std::string& text, double& out);
 
 // The `stc plot` subcommand: registered on `app`; run() executes it once parsed.
+// The --xy "X,Y" arguments into options.xy; false with `error` for a malformed pair.
+bool parseXyPairs(const std::vector<std::string>& pairs, PlotOptions& options, std::string& error);
+
 struct PlotCommand {
   std::string trace;
   std::string output;

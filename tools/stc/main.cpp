@@ -178,6 +178,7 @@ struct BuildArgs : CheckArgs {
   std::vector<std::string> traces;
   std::string traceOut;
   std::string plotOut;   // --plot: an SVG of the trace (tools/stc/Plot.h)
+  std::vector<std::string> plotXy;   // --xy X,Y: a path plot instead of the time plot
   bool realtime = false;
   std::string watchdog;
   int64_t slice = 0;
@@ -322,6 +323,12 @@ int runRun(const BuildArgs& a) {
     }
   } plotTemp;
   if (!a.plotOut.empty()) {
+    plot::PlotOptions xyCheck;
+    std::string xyError;
+    if (!plot::parseXyPairs(a.plotXy, xyCheck, xyError)) {
+      std::cerr << "stc: error: " << xyError << "\n";
+      return 2;
+    }
     if (ro.traces.empty()) {
       std::cerr << "stc: error: --plot needs --trace VAR,... (the variables to plot)\n";
       return 2;
@@ -381,6 +388,7 @@ int runRun(const BuildArgs& a) {
     plot::PlotOptions po;
     po.title = outputStem(a);
     std::string e;
+    plot::parseXyPairs(a.plotXy, po, e);   // checked before the run
     if (plot::plotTraceFile(plotCsv, a.plotOut, po, e) != 0) {
       std::cerr << "stc: error: --plot: " << e << "\n";
       if (rc == 0) rc = 1;
@@ -453,7 +461,11 @@ int main(int argc, char** argv) {
   run->add_option("--watch", ra.watches, "Print VAR after the run (MAIN.fb.Q, GVL.x, arr[3])")->allow_extra_args(false);
   run->add_option("--trace", ra.traces, "Record VAR,... at every tick")->allow_extra_args(false);
   run->add_option("--trace-out", ra.traceOut, "Trace file: .csv or .vcd");
-  run->add_option("--plot", ra.plotOut, "Also draw the --trace variables into an SVG file (see stc plot)");
+  auto* plotOpt = run->add_option("--plot", ra.plotOut, "Also draw the --trace variables into an SVG file (see stc plot)");
+  run->add_option("--xy", ra.plotXy, "With --plot: draw the path of Y over X instead (see stc plot --xy); repeat for more paths")
+      ->type_name("X,Y")
+      ->allow_extra_args(false)
+      ->needs(plotOpt);
   run->add_flag("--realtime", ra.realtime, "Pace the simulated clock to the wall clock");
   run->add_flag("--stats", ra.stats, "Print per-task statistics");
   run->add_option("--watchdog", ra.watchdog, "Per-task watchdog (simulated time; 0 = off; default 1s)");
