@@ -8,7 +8,7 @@ PACKAGES=(
   antlr4 libantlr4-runtime-dev            # grammar tool (4.7.2) and C++ runtime (4.9)
   llvm-19-dev llvm-19-tools               # code generation; FileCheck, llvm-dwarfdump for tests
   libboost-context-dev                    # task fibers in the virtual controller
-  libeigen3-dev                           # motion kinematics (later issues)
+  libeigen3-dev                           # kinematic models (stdlib-motion/kinematics)
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev libfmt-dev nlohmann-json3-dev
   libpugixml-dev                          # PLCopen XML and TwinCAT import/export
