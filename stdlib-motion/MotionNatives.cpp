@@ -33,7 +33,7 @@ std::unique_ptr<vm::NativeSession> MotionLibrary::newSession() const { return st
 
 bool MotionLibrary::readProject(const std::string& dir, const std::vector<std::string>& libraries, std::string& error) {
   return checkProjectToml(dir, error) && loadProjectDataDir(dir, cfg_.filesDir, error) && loadProjectAxes(dir, cfg_.axes, error, &cfg_.axisWhere) &&
-         loadProjectIo(dir, cfg_.io, error) && loadProjectCams(dir, cfg_.cams, error) &&
+         loadProjectIo(dir, cfg_.io, error) && loadProjectCams(dir, cfg_.cams, error) && loadProjectGroups(dir, cfg_.groups, error) &&
          loadProjectVendorProfile(dir, libraries, cfg_.profile, error);
 }
 
@@ -116,8 +116,65 @@ bool MotionSession::start(const vm::StartCtx& sc, std::string& error) {
     f->bound(ref, ax);
     mirror(ax);
   }
+  // The configured groups: bound to their variables, members added in order, owned by the
+  // members' task (all members must share it).
+  for (const GroupConfig& gc : cfg_.groups) {
+    std::string type;
+    void* var = sc.lookup(gc.name, type);
+    const auto& gf = lib_.groupFaces();
+    auto f = std::find_if(gf.begin(), gf.end(), [&](const GroupFace& p) { return p.typeName == type; });
+    if (!var || f == gf.end()) {
+      error = gc.where + "[[group]] '" + gc.name + "' has no axis group variable of that name in the program (declare it, e.g. '" +
+              gc.name + " : AXIS_GROUP_REF_SM3;' in a VAR_GLOBAL)";
+      return false;
+    }
+    AxisGroup& g = k.addGroup();
+    for (const std::string& an : gc.axes) {
+      std::string axType;
+      void* axVar = sc.lookup(an, axType);
+      auto bound = std::find_if(axisVars.begin(), axisVars.end(), [&](const AxisVar& v) { return v.var && v.var == axVar; });
+      if (!axVar || bound == axisVars.end()) {
+        error = gc.where + "[[group]] '" + gc.name + "': '" + an + "' is not an [[axis]] of project.toml";
+        return false;
+      }
+      if (g.identOf(*bound->axis) >= 0 || g.axes().size() >= kMaxGroupAxes) {
+        error = gc.where + "[[group]] '" + gc.name + "': " + (g.identOf(*bound->axis) >= 0 ? "'" + an + "' is listed twice" : "more than 9 axes");
+        return false;
+      }
+      if (g.task != UINT32_MAX && g.task != bound->axis->task) {
+        error = gc.where + "[[group]] '" + gc.name + "': its axes belong to different tasks ('" + an + "')";
+        return false;
+      }
+      g.task = bound->axis->task;
+      g.addAxis(*bound->axis);
+    }
+    if (groupVars.size() <= g.index()) groupVars.resize(g.index() + 1);
+    groupVars[g.index()] = var;
+    f->bound(var, g.index());
+  }
   io_ = startIo(sc, cfg_.io, k, error);
   return io_ != nullptr;
+}
+
+bool loadProjectGroups(const std::string& dir, std::vector<GroupConfig>& out, std::string& error) {
+  toml::table holder;
+  std::string file;
+  const toml::array* tables = projectTables(dir, "group", holder, file);
+  if (!tables) return true;   // none (or an invalid file: the project loader reports it)
+  for (const toml::node& n : *tables) {
+    const toml::table& t = *n.as_table();
+    GroupConfig gc;
+    gc.name = *t["name"].value<std::string>();
+    gc.where = tomlWhere(file, n);
+    for (const toml::node& a : *t["axes"].as_array()) gc.axes.push_back(*a.value<std::string>());
+    if (gc.axes.size() > kMaxGroupAxes) {
+      error = gc.where + "[[group]] '" + gc.name + "': at most 9 axes";
+      return false;
+    }
+    out.push_back(std::move(gc));
+  }
+  (void)error;
+  return true;
 }
 
 void MotionSession::cycle(const vm::HookCtx& c) {

@@ -36,9 +36,24 @@ struct CamConfig {
   std::shared_ptr<const Cam> cam;
 };
 
+// An axis group configured in project.toml ([[group]], docs/motion-groups.md): its
+// AXIS_GROUP_REF_SM3 variable and its member axes' variables, in order.
+struct GroupConfig {
+  std::string name;
+  std::vector<std::string> axes;
+  std::string where;               // "project.toml:line:col: " of the table
+};
+
+// How a face binds a configured group to its group variable (e.g. AXIS_GROUP_REF_SM3).
+struct GroupFace {
+  std::string typeName;
+  void (*bound)(void* var, uint32_t groupIndex) = nullptr;
+};
+
 // What a run's motion needs from project.toml and the command line.
 struct MotionConfig {
   std::vector<AxisConfig> axes;    // [[axis]]
+  std::vector<GroupConfig> groups; // [[group]]
   std::vector<IoDevice> io;        // [[io]]
   std::vector<CamConfig> cams;     // [[cam]]
   VendorProfile profile;           // [project] motion_profile, else by the libraries used
@@ -88,6 +103,8 @@ public:
   void addAxisFace(AxisFace f) { faces_.push_back(std::move(f)); }
   const std::vector<AxisFace>& axisFaces() const { return faces_; }
   void addCamFace(CamFace f) { camFaces_.push_back(std::move(f)); }
+  void addGroupFace(GroupFace f) { groupFaces_.push_back(std::move(f)); }
+  const std::vector<GroupFace>& groupFaces() const { return groupFaces_; }
   const std::vector<CamFace>& camFaces() const { return camFaces_; }
 
 private:
@@ -95,6 +112,7 @@ private:
   std::vector<vm::NativeEntry> natives_;
   std::vector<AxisFace> faces_;
   std::vector<CamFace> camFaces_;
+  std::vector<GroupFace> groupFaces_;
 };
 
 struct IoRuntime;   // ProjectIo.cpp
@@ -188,6 +206,8 @@ VendorProfile defaultVendorProfile(const std::vector<std::string>& libraries);
 // [project] data_dir of dir/project.toml (relative to dir; default dir/data).
 bool loadProjectDataDir(const std::string& dir, std::string& out, std::string& error);
 bool loadProjectIo(const std::string& dir, std::vector<IoDevice>& out, std::string& error);
+// The [[group]] tables of dir/project.toml.
+bool loadProjectGroups(const std::string& dir, std::vector<GroupConfig>& out, std::string& error);
 // The [[cam]] tables of dir/project.toml (ProjectCams.cpp).
 bool loadProjectCams(const std::string& dir, std::vector<CamConfig>& out, std::string& error);
 // The largest file a program or project.toml may have read (cam files).

@@ -492,6 +492,11 @@ const Schema& projectSchema() {
        integer("encoder_channel", 0, 2), tables("fault", axisFault)},
       {{"sw_limit_negative", "sw_limit_positive"}, {"limit_switch_negative", "limit_switch_positive"}},
       {{"increments_per_unit", "encoder_resolution"}, {"increments_per_unit", "units_per_revolution"}, {"increments_per_unit", "gear_ratio"}}};
+  static const Schema group{"[[group]]", {required(kind("name", Kind::VarPath)), [] {
+                              Field f = list("axes", Kind::VarPath, true);
+                              f.count = 0;
+                              return f;
+                            }()}};
   static const Schema io{"[[io]]",
                          {required(kind("var", Kind::VarPath)), required(str("kind", {"axis_window", "delay"})), kind("axis", Kind::VarPath),
                           ordered(pair("window", -kPos, kPos)), kind("source", Kind::VarPath), kind("delay", Kind::Duration)}};
@@ -524,7 +529,8 @@ const Schema& projectSchema() {
   static const Schema root{"project.toml",
                            {[] { Field f{"project", Kind::Table}; f.schema = &project; return f; }(),
                             [] { Field f{"build", Kind::Table}; f.schema = &build; return f; }(), tables("task", task, "name"),
-                            tables("axis", axis, "name"), tables("io", io, "var"), tables("cam", cam, "var")}};
+                            tables("axis", axis, "name"), tables("group", group, "name"), tables("io", io, "var"),
+                            tables("cam", cam, "var")}};
   return root;
 }
 

@@ -383,6 +383,7 @@ void MC_GroupReadConfiguration(sm3::MC_GroupReadConfiguration* self) {
 namespace stc::motion {
 
 void registerSm3GroupNatives(MotionLibrary& lib) {
+  lib.addGroupFace({"AXIS_GROUP_REF_SM3", [](void* var, uint32_t index) { static_cast<sm3::AXIS_GROUP_REF_SM3*>(var)->__stcGroup = index + 1; }});
   STC_SM3_NATIVE(MC_AddAxisToGroup, MC_AddAxisToGroup)
   STC_SM3_NATIVE(MC_RemoveAxisFromGroup, MC_RemoveAxisFromGroup)
   STC_SM3_NATIVE(MC_UngroupAllAxes, MC_UngroupAllAxes)
