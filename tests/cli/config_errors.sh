@@ -413,6 +413,69 @@ EOF
     fi
   done
   expect scaling-twice 1 "project.toml:3:1: error: \[\[axis\]\]: give only one of increments_per_unit or encoder_resolution" -- "$STC" check "$TMP/scale"
+  # [[group]]: the schema (empty axes, a typo) and the start checks (an axis listed twice, one
+  # that is no [[axis]], a name that is no group variable, members of two tasks).
+  group_project() {
+    project grp
+    printf 'VAR_GLOBAL\n  Axis1, Axis2 : AXIS_REF_SM3;\n  G : AXIS_GROUP_REF_SM3;\nEND_VAR\n' >"$TMP/grp/src/Axes.st"
+  }
+  group_project <<<'[project]
+libraries = ["codesys_sm3"]
+[[group]]
+name = "G"
+axes = []'
+  expect group-axes-empty 1 "project.toml:5:8: error: \[\[group\]\] axes: must not be empty" -- "$STC" check "$TMP/grp"
+  group_project <<<'[project]
+libraries = ["codesys_sm3"]
+[[group]]
+name = "G"
+axis = ["Axis1"]'
+  expect group-key-typo 1 "project.toml:5:1: error: unknown key 'axis' in \[\[group\]\].*did you mean 'axes'" -- "$STC" check "$TMP/grp"
+  for case in 'Axis1", "Axis1|listed twice' 'Axis1", "Axis3|Axis3. is not an \[\[axis\]\]'; do
+    axes=${case%%|*}; msg=${case#*|}
+    group_project <<EOF
+[project]
+libraries = ["codesys_sm3"]
+[[axis]]
+name = "Axis1"
+[[axis]]
+name = "Axis2"
+[[group]]
+name = "G"
+axes = ["$axes"]
+EOF
+    expect "group-${axes//[^A-Za-z0-9]/-}" 1 "project.toml:7:1: \[\[group\]\] 'G': .*$msg" -- "$STC" run "$TMP/grp" --cycles 3
+  done
+  group_project <<<'[project]
+libraries = ["codesys_sm3"]
+[[axis]]
+name = "Axis1"
+[[group]]
+name = "Axis1"
+axes = ["Axis1"]'
+  expect group-not-a-group 1 "\[\[group\]\] 'Axis1' has no axis group variable of that name" -- "$STC" run "$TMP/grp" --cycles 3
+  group_project <<<'[project]
+libraries = ["codesys_sm3"]
+[[task]]
+name = "Fast"
+interval = "1ms"
+programs = ["MAIN"]
+[[task]]
+name = "Slow"
+interval = "10ms"
+priority = 5
+programs = ["Other"]
+[[axis]]
+name = "Axis1"
+task = "Fast"
+[[axis]]
+name = "Axis2"
+task = "Slow"
+[[group]]
+name = "G"
+axes = ["Axis1", "Axis2"]'
+  printf 'PROGRAM Other\nEND_PROGRAM\n' >>"$TMP/grp/src/Axes.st"
+  expect group-two-tasks 1 "\[\[group\]\] 'G': its axes belong to different tasks" -- "$STC" run "$TMP/grp" --cycles 3
   ;;
 *)
   echo "unknown group $GROUP"; exit 2 ;;
