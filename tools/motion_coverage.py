@@ -1,14 +1,16 @@
 #!/usr/bin/env python3
-"""Regenerates the instruction coverage table of docs/motion.md from the spec CSVs.
+"""Regenerates the instruction coverage tables of docs/motion.md (single-axis rows)
+and docs/motion-groups.md (axis-group, interpolation and kinematics rows) from the
+spec CSVs.
 
-For every single-axis row of the instruction sets of issue 5 it prints whether
-the instruction is declared in stdlib-motion/**/*.st and which test files
-(tests/**) exercise it, and rewrites the table between the markers
-<!-- coverage:begin --> and <!-- coverage:end --> in docs/motion.md.
+For every such row it prints whether the instruction is declared in
+stdlib-motion/**/*.st and which test files (tests/**, projects/**) exercise it,
+and rewrites the table between the markers <!-- coverage:begin --> and
+<!-- coverage:end --> of each page.
 
     python3 tools/motion_coverage.py [--spec-dir ../shared/spec] [--check]
 
---check exits 1 when the table in the docs is out of date (nothing is written).
+--check exits 1 when a table in the docs is out of date (nothing is written).
 """
 import argparse
 import csv
@@ -17,11 +19,17 @@ import re
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SETS = {
-    # instruction set -> categories that are single-axis (issue 5)
-    "amc1600c": lambda c: not c.startswith("Synchronized motion"),
-    "leadshine_pmc600": lambda c: c.startswith("Single-axis"),
-}
+# (page, what its rows are, instruction set -> which categories)
+TABLES = [
+    ("docs/motion.md", "single-axis", {
+        "amc1600c": lambda c: not c.startswith("Synchronized motion"),
+        "leadshine_pmc600": lambda c: c.startswith("Single-axis"),
+    }),
+    ("docs/motion-groups.md", "axis-group, interpolation and kinematics", {
+        "leadshine_pmc600": lambda c: c.startswith("Axis group") or c.startswith("Leadshine interpolation"),
+        "moons_cnc": lambda c: c == "kinematics",
+    }),
+]
 BEGIN, END = "<!-- coverage:begin -->", "<!-- coverage:end -->"
 
 
@@ -64,11 +72,10 @@ def test_files(root):
     return out
 
 
-def table(spec_dir):
-    decl, tests = declared(ROOT), test_files(ROOT)
+def table(spec_dir, sets, what, decl, tests):
     lines = ["| set | instruction | category | declared in | tested by |", "| --- | --- | --- | --- | --- |"]
     done = total = 0
-    for vendor, single in SETS.items():
+    for vendor, single in sets.items():
         with open(os.path.join(spec_dir, f"{vendor}.csv"), encoding="utf-8") as f:
             for row in csv.DictReader(f):
                 if not single(row["category"]):
@@ -84,7 +91,7 @@ def table(spec_dir):
                 shown = ", ".join(used[:4]) + (f" (+{len(used) - 4})" if len(used) > 4 else "")
                 lines.append(f"| {vendor} | {name} | {row['category']} | {os.path.basename(where) if where else '**missing**'} | {shown or '**none**'} |")
     lines.append("")
-    lines.append(f"{done} of {total} single-axis rows declared and tested.")
+    lines.append(f"{done} of {total} {what} rows declared and tested.")
     return "\n".join(lines)
 
 
@@ -93,16 +100,20 @@ def main():
     ap.add_argument("--spec-dir", default=os.path.join(ROOT, "..", "shared", "spec"))
     ap.add_argument("--check", action="store_true")
     a = ap.parse_args()
-    doc = os.path.join(ROOT, "docs", "motion.md")
-    text = open(doc, encoding="utf-8").read()
-    if BEGIN not in text or END not in text:
-        sys.exit(f"{doc}: markers {BEGIN} / {END} not found")
-    new = text[: text.index(BEGIN) + len(BEGIN)] + "\n" + table(a.spec_dir) + "\n" + text[text.index(END):]
+    decl, tests = declared(ROOT), test_files(ROOT)
+    stale = False
+    for page, what, sets in TABLES:
+        doc = os.path.join(ROOT, page)
+        text = open(doc, encoding="utf-8").read()
+        if BEGIN not in text or END not in text:
+            sys.exit(f"{doc}: markers {BEGIN} / {END} not found")
+        new = text[: text.index(BEGIN) + len(BEGIN)] + "\n" + table(a.spec_dir, sets, what, decl, tests) + "\n" + text[text.index(END):]
+        stale = stale or new != text
+        if not a.check and new != text:
+            open(doc, "w", encoding="utf-8").write(new)
+        print(new[new.index(BEGIN): new.index(END)].splitlines()[-1])
     if a.check:
-        sys.exit(0 if new == text else 1)
-    if new != text:
-        open(doc, "w", encoding="utf-8").write(new)
-    print(new[new.index(BEGIN): new.index(END)].splitlines()[-1])
+        sys.exit(1 if stale else 0)
 
 
 if __name__ == "__main__":
