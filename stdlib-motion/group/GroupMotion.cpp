@@ -456,7 +456,8 @@ void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const 
   fb.out.commandAccepted = false;
   auto factor = [](double f) { return std::isfinite(f) && f > 0 && f <= 1; };
   if (!factor(in.velFactor) || !factor(in.accFactor) || !factor(in.jerkFactor)) return k.fail(fb, Error::AgInvalidMoveInputs, c);
-  if (!validBufferMode(in.bufferMode) || in.transitionMode < 0 || in.transitionMode > 4) return k.fail(fb, Error::InvalidBufferMode, c);
+  if (!validBufferMode(in.bufferMode)) return k.fail(fb, Error::InvalidBufferMode, c);
+  if (in.transitionMode < 0 || in.transitionMode > 4) return k.fail(fb, Error::AgInvalidMoveInputs, c);
   if (Error e = motionRefusal(k, g); e != Error::None) {
     if (e == Error::AgSingleAxisActive) groupError(k, g, e, Error::None, c.nowNs, c.cycle);
     return k.fail(fb, e, c);
@@ -506,6 +507,8 @@ void callGroupMoveDirect(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, cons
   // Blending needs a transition element (TMNone is not allowed with it, manual 1.5); PTP
   // moves have no transition elements yet (docs/motion-groups.md).
   if (in.bufferMode != BufferMode::Aborting && in.bufferMode != BufferMode::Buffered) return k.fail(fb, Error::AgBlendingNotSupported, c);
+  if (in.transitionMode < 0 || in.transitionMode > 4) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  if (in.transitionMode != 0) return k.fail(fb, Error::AgTransitionNotAllowed, c);   // Aborting / Buffered: TMNone only
   if (Error e = motionRefusal(k, g); e != Error::None) {
     if (e == Error::AgSingleAxisActive) groupError(k, g, e, Error::None, c.nowNs, c.cycle);
     return k.fail(fb, e, c);
