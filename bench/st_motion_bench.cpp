@@ -9,6 +9,8 @@
 // Third figure (issue 15): N axis groups of 3 axes, each running a blended square path
 // (4 MC_MoveLinearRelative, BlendingLow + TMCornerDistance) re-queued whenever it ends, every FB
 // called from ST in every cycle.  Target: < 100 us per cycle for 100 groups.
+// Fourth figure: N SMC_TRAFO_Scara2 inverse transformations per cycle from ST (the tool point
+// on a circle), the kinematics face's cost through the path users take.
 // Each figure twice: the programs above never read a field of an axis variable,
 // so the kernel leaves them alone (docs/motion.md, "Mirrors"); the "reads" variant
 // adds one field read per axis, which makes every axis variable mirrored in every cycle.
@@ -88,11 +90,21 @@ std::string groupProgram(int n) {
   return s.str();
 }
 
+std::string trafoProgram(int n) {
+  std::ostringstream s;
+  s << "PROGRAM MAIN\nVAR\n  inv : ARRAY[1.." << n << "] OF SMC_TRAFO_Scara2;\n  i : DINT;\n  cycle : DINT;\n  u : LREAL;\n  sum : LREAL;\nEND_VAR\n"
+    << "cycle := cycle + 1;\nFOR i := 1 TO " << n << " DO\n"
+    << "  u := 0.001 * DINT_TO_LREAL(cycle + i);\n"
+    << "  inv[i].pi.dX := 100.0 + 50.0 * COS(u); inv[i].pi.dY := 50.0 * SIN(u);\n"
+    << "  inv[i](dArmLength1 := 100, dArmLength2 := 100);\n  sum := sum + inv[i].dA;\nEND_FOR\nEND_PROGRAM\n";
+  return s.str();
+}
+
 // Seconds of wall time per cycle over `cycles` cycles (after a warm-up).
-double perCycle(int n, uint64_t cycles, bool cams, bool reads, bool groups = false) {
-  const std::string file = "/tmp/stc_st_motion_bench_" + std::string(groups ? "group_" : cams ? "cam_" : "") + (reads ? "reads_" : "") +
-                           std::to_string(n) + ".st";
-  std::ofstream(file) << (groups ? groupProgram(n) : cams ? camProgram(n, reads) : program(n, reads));
+double perCycle(int n, uint64_t cycles, bool cams, bool reads, bool groups = false, bool trafo = false) {
+  const std::string file = "/tmp/stc_st_motion_bench_" + std::string(trafo ? "trafo_" : groups ? "group_" : cams ? "cam_" : "") +
+                           (reads ? "reads_" : "") + std::to_string(n) + ".st";
+  std::ofstream(file) << (trafo ? trafoProgram(n) : groups ? groupProgram(n) : cams ? camProgram(n, reads) : program(n, reads));
   Compilation comp;
   comp.addPath(file);
   CompileOptions co;
@@ -128,10 +140,10 @@ double perCycle(int n, uint64_t cycles, bool cams, bool reads, bool groups = fal
 
 int main(int argc, char** argv) {
   const uint64_t cycles = argc > 1 ? std::stoull(argv[1]) : 5000;
-  const std::string only = argc > 2 ? argv[2] : "";   // "axes", "cams" or "groups": one scenario
+  const std::string only = argc > 2 ? argv[2] : "";   // "axes", "cams", "groups" or "trafo": one scenario
   for (bool reads : {false, true})
     for (int n : {1, 100, 1000}) {
-      if (only == "cams" || only == "groups" || (reads && n != 1000)) continue;
+      if ((!only.empty() && only != "axes") || (reads && n != 1000)) continue;
       double best = 1e9;
       for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, false, reads));
       std::printf("%5d axes (MC_Power + MC_MoveAbsolute from ST%s, 1 ms cycle): %8.2f us per cycle (best of 3, %llu cycles)\n", n,
@@ -139,18 +151,25 @@ int main(int argc, char** argv) {
     }
   for (bool reads : {false, true})
     for (int n : {1, 500}) {
-      if (only == "axes" || only == "groups" || (reads && n != 500)) continue;
+      if ((!only.empty() && only != "cams") || (reads && n != 500)) continue;
       double best = 1e9;
       for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, true, reads));
       std::printf("%5d cam pairs (2 MC_Power, MC_MoveVelocity, MC_CamTableSelect, MC_CamIn from ST%s): %8.2f us per cycle (best of 3, %llu cycles)\n",
                   n, reads ? ", reads fSetPosition" : "", best * 1e6, static_cast<unsigned long long>(cycles));
     }
   for (int n : {1, 100}) {
-    if (only == "axes" || only == "cams") continue;
+    if (!only.empty() && only != "groups") continue;
     double best = 1e9;
     for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, false, false, true));
     std::printf("%5d groups of 3 axes (blended MC_MoveLinearRelative squares from ST): %8.2f us per cycle (best of 3, %llu cycles)\n", n,
                 best * 1e6, static_cast<unsigned long long>(cycles));
+  }
+  if (only.empty() || only == "trafo") {
+    const int n = 1000;
+    double best = 1e9;
+    for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, false, false, false, true));
+    std::printf("%5d SMC_TRAFO_Scara2 calls from ST: %8.2f us per cycle, %.0f ns per call (best of 3, %llu cycles)\n", n, best * 1e6,
+                best * 1e9 / n, static_cast<unsigned long long>(cycles));
   }
   return 0;
 }
