@@ -224,6 +224,27 @@ void groupError(Kernel& k, AxisGroup& g, Error groupErr, Error axisErr, int64_t 
   g.enterErrorStop(groupErr, axisErr);
 }
 
+// Makes m the group's running motion from originNs at the given rate (also the latest
+// motion, which the next command starts from).
+void runMotion(AxisGroup& g, std::shared_ptr<const GroupMotion> m, int64_t originNs, double rate) {
+  g.motion = m;
+  g.lastMotion = std::move(m);
+  g.originNs = g.lastOriginNs = g.rateNs = originNs;
+  g.rateTau = 0;
+  g.motionRate = rate;
+}
+
+// Where each member comes to rest when it brakes from `start` under its limits (to velocity 0).
+std::vector<double> brakeTargets(const std::vector<Kinematic>& start, const std::vector<Limits>& lim) {
+  std::vector<double> target(start.size());
+  for (size_t i = 0; i < start.size(); ++i) {
+    Profile p;
+    planVelocity(start[i], 0, lim[i], p);
+    target[i] = p.end().p;
+  }
+  return target;
+}
+
 // Starts fb (the group's next command) at nowNs from the members' present set states.
 Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, int64_t originNs) {
   GroupCommand& cmd = commandOf(fb);
@@ -231,56 +252,42 @@ Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, int64_t o
   // (the axes have not been stepped in this cycle yet), else their set states.
   const std::vector<Kinematic> start = presentStates(k, g, nowNs);
   takeMembers(k, g, nowNs);
-  g.rateNs = originNs;
-  g.rateTau = 0;
-  g.motionRate = cmd.kind == GroupCommand::Kind::Stop ? 1.0 : g.rate;   // MC_GroupStop ignores the override
+  const double rate = cmd.kind == GroupCommand::Kind::Stop ? 1.0 : g.rate;   // MC_GroupStop ignores the override
   if (cmd.kind == GroupCommand::Kind::Wait) {
     auto hold = std::make_shared<HoldMotion>();
     hold->at_ = start;
     hold->total = cmd.waitTime;
-    g.motion = hold;
-    g.lastMotion = std::move(hold);
-    g.originNs = g.lastOriginNs = originNs;
-    g.active = &fb;
-    g.ended = false;
-    g.activeMovementId = fb.out.movementId;
-    g.setState(GroupState::Moving);
-    fb.out.active = true;
-    fb.sync();
-    return Error::None;
-  }
-  auto m = std::make_shared<PtpMotion>();
-  std::vector<Limits> lim;
-  std::vector<double> target(g.axes().size());
-  if (cmd.kind == GroupCommand::Kind::Direct) {
-    const Limits* anc = cmd.ancSerial < g.ancImmediate ? g.anc : cmd.anc;   // an immediate change since: the group's
-    if (!memberLimits(g, cmd.direct.velFactor, cmd.direct.accFactor, cmd.direct.jerkFactor, lim, anc)) return Error::AgAxisLimitsMissing;
-    if (cmd.targets.size() != target.size()) {   // the first start (a continue keeps the targets)
-      cmd.targets.resize(target.size());
-      for (size_t i = 0; i < target.size(); ++i)
-        cmd.targets[i] = cmd.direct.relative ? start[i].p + cmd.direct.position[i] : cmd.direct.position[i];
-    }
-    target = cmd.targets;
+    runMotion(g, std::move(hold), originNs, rate);
   } else {
-    // Halt / stop: every member brakes to rest along its own profile (the PTP path is
-    // not defined); Deceleration and Jerk are the group's, limited by the axes' maxima.
-    if (!memberLimits(g, 1, 1, 1, lim)) return Error::AgAxisLimitsMissing;
-    for (size_t i = 0; i < target.size(); ++i) {
-      Limits& l = lim[i];
-      l.vel = std::max(l.vel, std::fabs(start[i].v));
-      l.dec = cmd.stop.deceleration * cmd.stop.accFactor;
-      l.acc = std::max(l.acc, l.dec);
-      l.jerk = cmd.stop.jerk > 0 ? cmd.stop.jerk * cmd.stop.jerkFactor : 0;
-      Profile stopProfile;
-      planVelocity(start[i], 0, l, stopProfile);
-      target[i] = stopProfile.end().p;
+    std::vector<Limits> lim;
+    std::vector<double> target;
+    if (cmd.kind == GroupCommand::Kind::Direct) {
+      const Limits* anc = cmd.ancSerial < g.ancImmediate ? g.anc : cmd.anc;   // an immediate change since: the group's
+      if (!memberLimits(g, cmd.direct.velFactor, cmd.direct.accFactor, cmd.direct.jerkFactor, lim, anc)) return Error::AgAxisLimitsMissing;
+      if (cmd.targets.size() != start.size()) {   // the first start (a continue keeps the targets)
+        cmd.targets.resize(start.size());
+        for (size_t i = 0; i < start.size(); ++i)
+          cmd.targets[i] = cmd.direct.relative ? start[i].p + cmd.direct.position[i] : cmd.direct.position[i];
+      }
+      target = cmd.targets;
+    } else {
+      // Halt / stop: every member brakes to rest along its own profile (the PTP path is
+      // not defined); Deceleration and Jerk are the group's, limited by the axes' maxima.
+      if (!memberLimits(g, 1, 1, 1, lim)) return Error::AgAxisLimitsMissing;
+      for (size_t i = 0; i < lim.size(); ++i) {
+        Limits& l = lim[i];
+        l.vel = std::max(l.vel, std::fabs(start[i].v));
+        l.dec = cmd.stop.deceleration * cmd.stop.accFactor;
+        l.acc = std::max(l.acc, l.dec);
+        l.jerk = cmd.stop.jerk > 0 ? cmd.stop.jerk * cmd.stop.jerkFactor : 0;
+      }
+      target = brakeTargets(start, lim);
     }
+    auto m = std::make_shared<PtpMotion>();
+    const bool invariant = cmd.kind == GroupCommand::Kind::Direct && cmd.direct.pathInvariant;
+    if (planPtp(start, target, lim, *m, invariant) != PlanStatus::Ok) return Error::AgAxisLimitsMissing;
+    runMotion(g, std::move(m), originNs, rate);
   }
-  const bool invariant = cmd.kind == GroupCommand::Kind::Direct && cmd.direct.pathInvariant;
-  if (planPtp(start, target, lim, *m, invariant) != PlanStatus::Ok) return Error::AgAxisLimitsMissing;
-  g.motion = m;
-  g.lastMotion = std::move(m);
-  g.originNs = g.lastOriginNs = originNs;
   g.active = &fb;
   g.ended = false;
   g.activeMovementId = fb.out.movementId;
@@ -852,19 +859,9 @@ void callGroupInterrupt(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, uint3
     const std::vector<Kinematic> start = presentStates(k, g, c.nowNs);
     std::vector<Limits> lim;
     if (!memberLimits(g, 1, 1, 1, lim)) return k.fail(fb, Error::AgAxisLimitsMissing, c);
-    std::vector<double> target(start.size());
-    for (size_t i = 0; i < start.size(); ++i) {
-      Profile p;
-      planVelocity(start[i], 0, lim[i], p);
-      target[i] = p.end().p;
-    }
     auto m = std::make_shared<PtpMotion>();
-    if (planPtp(start, target, lim, *m) != PlanStatus::Ok) return k.fail(fb, Error::AgAxisLimitsMissing, c);
-    g.motion = m;
-    g.lastMotion = std::move(m);
-    g.originNs = g.lastOriginNs = g.rateNs = c.nowNs;
-    g.rateTau = 0;
-    g.motionRate = 1;
+    if (planPtp(start, brakeTargets(start, lim), lim, *m) != PlanStatus::Ok) return k.fail(fb, Error::AgAxisLimitsMissing, c);
+    runMotion(g, std::move(m), c.nowNs, 1);
     g.interrupted = &mv;
     mv.out.active = false;
     mv.sync();
