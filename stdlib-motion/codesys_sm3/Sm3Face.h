@@ -131,25 +131,26 @@ inline void moveBody(T* self) {
 
 
 // ---- readers: Valid and Busy while Enable; values refreshed at every call.
-template <class T, class F>
-void reader(T* self, F fill) {
-  CallCtx c = callContext();
-  Axis* ax = self->Enable ? bind(self->Axis, c) : nullptr;
-  if (!self->Enable) {
-    self->Valid = self->Busy = self->Error = false;
-    self->ErrorID = 0;
-    return;
-  }
-  if (!ax) {
-    self->Valid = self->Busy = false;
+// The outputs of an Enable reader whose axis or group (`target`, null when not bound to the
+// calling task) `fill` reads.
+template <class T, class Target, class F>
+void readerOutputs(T* self, Target* target, F fill) {
+  self->Valid = self->Busy = self->Error = false;
+  self->ErrorID = 0;
+  if (!self->Enable) return;
+  if (!target) {
     self->Error = true;
-    self->ErrorID = static_cast<int16_t>(smcError(Error::NotReadyForMotion));
+    self->ErrorID = static_cast<decltype(self->ErrorID)>(smcError(Error::NotReadyForMotion));
     return;
   }
   self->Valid = self->Busy = true;
-  self->Error = false;
-  self->ErrorID = 0;
-  fill(*ax);
+  fill(*target);
+}
+
+template <class T, class F>
+void reader(T* self, F fill) {
+  CallCtx c = callContext();
+  readerOutputs(self, self->Enable ? bind(self->Axis, c) : nullptr, fill);
 }
 
 // The body every axis FB shares: bind the axis, let `call` talk to the kernel, mirror the axis.

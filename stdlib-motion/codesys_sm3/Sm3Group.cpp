@@ -181,17 +181,7 @@ void MC_GroupStop(sm3::MC_GroupStop* self) {
 template <class T, class F>
 void groupReader(T* self, F fill) {
   CallCtx c = callContext();
-  AxisGroup* g = self->Enable ? bindGroup(self->AxisGroup, c) : nullptr;
-  self->Valid = self->Busy = self->Error = false;
-  self->ErrorID = 0;
-  if (!self->Enable) return;
-  if (!g) {
-    self->Error = true;
-    self->ErrorID = static_cast<decltype(self->ErrorID)>(smcError(Error::NotReadyForMotion));
-    return;
-  }
-  self->Valid = self->Busy = true;
-  fill(*g);
+  readerOutputs(self, self->Enable ? bindGroup(self->AxisGroup, c) : nullptr, fill);
 }
 
 void MC_GroupReadStatus(sm3::MC_GroupReadStatus* self) {
