@@ -75,6 +75,16 @@ bool gantryRange(const T* s) {
   return plausible(s->minX, s->maxX, s->minY, s->maxY);
 }
 
+// The X/Y display outputs of the gantry forward blocks (normalised to the min/max range).
+template <class T>
+void gantryXYDisplay(T* s) {
+  s->dnx = normed(s->dx, s->minX, s->maxX);
+  s->dny = normed(s->dy, s->minY, s->maxY);
+  s->dnOffsetX = normed(-s->dOffsetX, s->minX, s->maxX);
+  s->dnOffsetY = normed(-s->dOffsetY, s->minY, s->maxY);
+  s->ratio = s->maxX > s->minX && s->maxY > s->minY ? (s->maxX - s->minX) / (s->maxY - s->minY) : 0.0;
+}
+
 void SMC_TRAFOF_Gantry2(sm3::SMC_TRAFOF_Gantry2* s) {
   const CallCtx c = callContext();
   double ax, ay;
@@ -83,11 +93,7 @@ void SMC_TRAFOF_Gantry2(sm3::SMC_TRAFOF_Gantry2* s) {
     return fail(s);
   s->dx = ax - s->dOffsetX;
   s->dy = ay - s->dOffsetY;
-  s->dnx = normed(s->dx, s->minX, s->maxX);
-  s->dny = normed(s->dy, s->minY, s->maxY);
-  s->dnOffsetX = normed(-s->dOffsetX, s->minX, s->maxX);
-  s->dnOffsetY = normed(-s->dOffsetY, s->minY, s->maxY);
-  s->ratio = s->maxX > s->minX && s->maxY > s->minY ? (s->maxX - s->minX) / (s->maxY - s->minY) : 0.0;
+  gantryXYDisplay(s);
   s->bError = false;
 }
 
@@ -100,11 +106,7 @@ void SMC_TRAFOF_Gantry3(sm3::SMC_TRAFOF_Gantry3* s) {
   s->dx = ax - s->dOffsetX;
   s->dy = ay - s->dOffsetY;
   s->dz = az - s->dOffsetZ;
-  s->dnx = normed(s->dx, s->minX, s->maxX);
-  s->dny = normed(s->dy, s->minY, s->maxY);
-  s->dnOffsetX = normed(-s->dOffsetX, s->minX, s->maxX);
-  s->dnOffsetY = normed(-s->dOffsetY, s->minY, s->maxY);
-  s->ratio = s->maxX > s->minX && s->maxY > s->minY ? (s->maxX - s->minX) / (s->maxY - s->minY) : 0.0;
+  gantryXYDisplay(s);
   s->bError = false;
 }
 
