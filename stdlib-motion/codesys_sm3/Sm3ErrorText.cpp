@@ -145,6 +145,9 @@ constexpr uint16_t kSmcNumbers[] = {
     0x7115,  // AgNotStandby: SMC_AG_NOT_STANDBY
     0x7116,  // AgNotInterruptible: SMC_AG_NOT_INTERRUPTIBLE
     0x7117,  // AgNotInterrupted: SMC_AG_NOT_INTERRUPTED
+    0x7118,  // AgInvalidKinematics: SMC_AG_INVALID_KINEMATICS
+    0x7119,  // AgUnreachable: SMC_AG_POSITION_UNREACHABLE
+    0x711A,  // AgInvalidCoordSystem: SMC_AG_INVALID_COORD_SYSTEM
 };
 static_assert(sizeof(kSmcNumbers) / sizeof(kSmcNumbers[0]) == static_cast<size_t>(Error::Count_), "one SMC_ERROR per core fault");
 
@@ -394,6 +397,9 @@ const ErrorText kErrors[] = {
   {28949, "SMC_AG_NOT_STANDBY", "the axis group is not in GroupStandby (or a motion is interrupted) (stc)"},
   {28950, "SMC_AG_NOT_INTERRUPTIBLE", "no MoveDirect / MoveLinear / MoveCircular runs that could be interrupted (stc)"},
   {28951, "SMC_AG_NOT_INTERRUPTED", "no interrupted motion matches the continue data (stc)"},
+  {28952, "SMC_AG_INVALID_KINEMATICS", "the kinematics is not one of the TRAFO.Kin_* blocks, or its parameters are rejected (stc)"},
+  {28953, "SMC_AG_POSITION_UNREACHABLE", "the kinematics cannot reach the Cartesian position (outside the workspace) (stc)"},
+  {28954, "SMC_AG_INVALID_COORD_SYSTEM", "the coordinate system is out of range or not allowed here, or a dynamic PCS lost its master (stc)"},
 };
 
 const ErrorText* find(uint16_t id) {

@@ -4,6 +4,9 @@
 #include "stdlib-motion/codesys_sm3/Sm3Face.h"
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+
+#include "stdlib-motion/core/InputBounds.h"
 
 #include "stdlib-motion/group/GroupMotion.h"
 
@@ -74,15 +77,16 @@ void SMC_GroupPower(sm3::SMC_GroupPower* self) {
   });
 }
 
-// MC_MoveDirect*: SMC_POS_REF's v[i] is member i's coordinate in every coordinate system
-// (without kinematics every system equals ACS, docs/motion-groups.md); in TCS positions
-// are relative to the pose at the start.
+// MC_MoveDirect*: SMC_POS_REF's v[i] is coordinate i of CoordSystem (GroupKinematics.h: with
+// kinematics X..C and the additional axes, else the members); in TCS positions are relative
+// to the pose at the start.
 template <class T>
 void moveDirect(T* self, const sm3::SMC_POS_REF& pos, bool relative) {
   groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
     DirectInputs in;
     for (size_t i = 0; i < kMaxGroupAxes; ++i) in.position[i] = pos.v[i];
-    in.relative = relative || self->CoordSystem == 5;   // TCS
+    in.relative = relative;
+    in.coordSystem = self->CoordSystem;
     in.pathInvariant = self->MovementType == 1;
     in.velFactor = self->VelFactor;
     in.accFactor = self->AccFactor;
@@ -107,8 +111,15 @@ PathInputs pathInputs(const T* self, const AxisGroup& g) {
   in.velFactor = self->VelFactor;
   in.accFactor = self->AccFactor;
   in.jerkFactor = self->JerkFactor;
+  in.coordSystem = self->CoordSystem;
   (void)g;
   return in;
+}
+
+// The number of coordinates a position in CoordSystem cs has for group g.
+size_t coordsIn(const AxisGroup& g, int cs) {
+  if (!validCoordSystem(cs)) return g.axes().size();
+  return static_cast<size_t>(coordCount(g, cs == 5 ? CoordSystem::MCS : static_cast<CoordSystem>(cs)));
 }
 template <class T>
 void moveLinear(T* self, const sm3::SMC_POS_REF& pos, bool relative) {
@@ -116,7 +127,7 @@ void moveLinear(T* self, const sm3::SMC_POS_REF& pos, bool relative) {
     PathInputs in = pathInputs(self, g);
     in.spec.kind = path::MoveKind::Line;
     in.spec.relative = relative || self->CoordSystem == 5;   // TCS: relative to the start
-    for (size_t i = 0; i < g.axes().size(); ++i) in.spec.end[i] = pos.v[i];
+    for (size_t i = 0; i < coordsIn(g, self->CoordSystem); ++i) in.spec.end[i] = pos.v[i];
     callGroupMovePath(k, fb, g, self->Execute, in, c);
   });
 }
@@ -133,12 +144,13 @@ void moveCircular(T* self, bool relative) {
     PathInputs in = pathInputs(self, g);
     const bool rel = relative || self->CoordSystem == 5;
     in.spec.relative = rel;
-    for (size_t i = 0; i < g.axes().size(); ++i) in.spec.end[i] = self->EndPoint.v[i];
+    const size_t n = coordsIn(g, self->CoordSystem);
+    for (size_t i = 0; i < n; ++i) in.spec.end[i] = self->EndPoint.v[i];
     in.spec.ccw = self->PathChoice == 1;
     switch (self->CircMode) {
       case 0:   // BORDER
         in.spec.kind = path::MoveKind::ArcBorder;
-        for (size_t i = 0; i < g.axes().size(); ++i) in.spec.aux[i] = self->AuxPoint.v[i];
+        for (size_t i = 0; i < n; ++i) in.spec.aux[i] = self->AuxPoint.v[i];
         break;
       case 1:   // CENTER: an offset from the start point, in both the absolute and relative FB
         in.spec.kind = path::MoveKind::ArcCenter;
@@ -205,36 +217,90 @@ void MC_GroupReadStatus(sm3::MC_GroupReadStatus* self) {
   });
 }
 
-// Set and actual values of the members: v[i] = member i (every coordinate system while the
-// group has no kinematics); the rest of the union is 0.
-template <class T, class F>
-void groupValues(T* self, sm3::SMC_POS_REF& out, F value) {
-  out = sm3::SMC_POS_REF{};
-  groupReader(self, [&](AxisGroup& g) {
-    for (size_t i = 0; i < g.axes().size(); ++i) out.v[i] = value(*g.axes()[i]);
-  });
-}
-void SMC_GroupReadSetPosition(sm3::SMC_GroupReadSetPosition* self) {
-  self->KinematicConfig = sm3::CONFIGDATA{};
-  groupValues(self, self->Position, [](const Axis& ax) { return ax.reportPosition(ax.set().p); });
-}
-void SMC_GroupReadSetVelocity(sm3::SMC_GroupReadSetVelocity* self) {
-  groupValues(self, self->Velocity, [](const Axis& ax) { return ax.set().v; });
-}
-void SMC_GroupReadSetAcceleration(sm3::SMC_GroupReadSetAcceleration* self) {
-  groupValues(self, self->Acceleration, [](const Axis& ax) { return ax.set().a; });
-}
-void MC_GroupReadActualPosition(sm3::MC_GroupReadActualPosition* self) {
-  self->KinematicConfig = sm3::CONFIGDATA{};
-  groupValues(self, self->Position, [](const Axis& ax) { return ax.reportPosition(ax.actPosition()); });
-}
-void MC_GroupReadActualVelocity(sm3::MC_GroupReadActualVelocity* self) {
-  groupValues(self, self->Velocity, [](const Axis& ax) { return ax.actVelocity(); });
+// Set and actual values in CoordSystem: the members' positions (velocities, accelerations)
+// through the kinematics and frames.  Cartesian velocities and accelerations are the
+// derivatives of the coordinates (A, B, C: of the angles), by central differences over h.
+enum class Quantity { Position, Velocity, Acceleration };
+bool groupVector(const Kernel& k, const AxisGroup& g, int cs, const Kinematic* q, Quantity what, double* out) {
+  const size_t n = g.axes().size();
+  if (!validCoordSystem(cs) || cs == 5) return false;
+  const CoordSystem sys = static_cast<CoordSystem>(cs);
+  double p[kMaxGroupAxes] = {};
+  for (size_t i = 0; i < n; ++i) p[i] = q[i].p;
+  if (what == Quantity::Position || sys == CoordSystem::ACS || (!g.kin && sys == CoordSystem::MCS)) {
+    if (what == Quantity::Position) return coordsOf(k, g, sys, p, out);
+    for (size_t i = 0; i < n; ++i) out[i] = what == Quantity::Velocity ? q[i].v : q[i].a;
+    if (sys == CoordSystem::ACS || !g.kin) {
+      if (sys == CoordSystem::ACS || sys == CoordSystem::MCS) return true;
+    }
+  }
+  constexpr double h = 1e-4;
+  double pp[kMaxGroupAxes] = {}, pm[kMaxGroupAxes] = {}, x0[kMaxGroupAxes] = {}, xp[kMaxGroupAxes] = {}, xm[kMaxGroupAxes] = {};
+  for (size_t i = 0; i < n; ++i) {
+    pp[i] = p[i] + h * q[i].v + 0.5 * h * h * q[i].a;
+    pm[i] = p[i] - h * q[i].v + 0.5 * h * h * q[i].a;
+  }
+  if (!coordsOf(k, g, sys, p, x0) || !coordsOf(k, g, sys, pp, xp) || !coordsOf(k, g, sys, pm, xm)) return false;
+  const int m = coordCount(g, sys);
+  for (int i = 0; i < m; ++i) out[i] = what == Quantity::Velocity ? (xp[i] - xm[i]) / (2 * h) : (xp[i] - 2 * x0[i] + xm[i]) / (h * h);
+  return true;
 }
 
+void setConfig(sm3::CONFIGDATA& out, const AxisGroup& g, const Kinematic* q) {
+  out = sm3::CONFIGDATA{};
+  if (!g.kin) return;
+  double p[kMaxGroupAxes] = {};
+  for (size_t i = 0; i < g.axes().size(); ++i) p[i] = q[i].p;
+  const KinConfigData c = g.kin->configOf(p);
+  out.iElbow = static_cast<int16_t>(c.elbow);
+  out.iShoulder = static_cast<int16_t>(c.shoulder);
+  out.iWrist = static_cast<int16_t>(c.wrist);
+}
+
+// A reader of set (actual) values: `state` gives member i's state.
+template <class T, class F>
+void groupValues(T* self, sm3::SMC_POS_REF& out, Quantity what, F state) {
+  out = sm3::SMC_POS_REF{};
+  groupReader(self, [&](AxisGroup& g) {
+    Kinematic q[kMaxGroupAxes] = {};
+    for (size_t i = 0; i < g.axes().size(); ++i) q[i] = state(*g.axes()[i]);
+    if constexpr (requires { self->KinematicConfig; }) setConfig(self->KinematicConfig, g, q);
+    if (!groupVector(kernel(), g, self->CoordSystem, q, what, out.v)) {
+      out = sm3::SMC_POS_REF{};
+      self->Valid = false;
+      self->Error = true;
+      self->ErrorID = static_cast<decltype(self->ErrorID)>(smcError(validCoordSystem(self->CoordSystem) && self->CoordSystem != 5
+                                                                       ? Error::AgUnreachable : Error::AgInvalidCoordSystem));
+    }
+  });
+}
+Kinematic setState(const Axis& ax) { return Kinematic{ax.reportPosition(ax.set().p), ax.set().v, ax.set().a}; }
+Kinematic actState(const Axis& ax) { return Kinematic{ax.reportPosition(ax.actPosition()), ax.actVelocity(), 0}; }
+
+void SMC_GroupReadSetPosition(sm3::SMC_GroupReadSetPosition* self) { groupValues(self, self->Position, Quantity::Position, setState); }
+void SMC_GroupReadSetVelocity(sm3::SMC_GroupReadSetVelocity* self) { groupValues(self, self->Velocity, Quantity::Velocity, setState); }
+void SMC_GroupReadSetAcceleration(sm3::SMC_GroupReadSetAcceleration* self) {
+  groupValues(self, self->Acceleration, Quantity::Acceleration, setState);
+}
+void MC_GroupReadActualPosition(sm3::MC_GroupReadActualPosition* self) { groupValues(self, self->Position, Quantity::Position, actState); }
+void MC_GroupReadActualVelocity(sm3::MC_GroupReadActualVelocity* self) { groupValues(self, self->Velocity, Quantity::Velocity, actState); }
+
+// In a Cartesian system the members' new positions come from the inverse kinematics (the
+// configuration the members stand in); relative: added to the present coordinates.
 void MC_GroupSetPosition(sm3::MC_GroupSetPosition* self) {
   groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
-    callGroupSetPosition(k, fb, g, self->Execute, self->Position.v, self->Relative || self->CoordSystem == 5, c);
+    const int cs = self->CoordSystem;
+    const bool relative = self->Relative || cs == 5;
+    if (!validCoordSystem(cs)) return k.fail(fb, Error::AgInvalidCoordSystem, c);
+    if (cs == 0 || (!g.kin && cs == 5)) return callGroupSetPosition(k, fb, g, self->Execute, self->Position.v, relative, c);
+    if (!self->Execute || fb.execute) return callGroupSetPosition(k, fb, g, self->Execute, self->Position.v, relative, c);
+    const CoordSystem sys = cs == 5 ? CoordSystem::MCS : static_cast<CoordSystem>(cs);
+    double q[kMaxGroupAxes] = {}, x[kMaxGroupAxes] = {}, target[kMaxGroupAxes] = {};
+    for (size_t i = 0; i < g.axes().size(); ++i) q[i] = g.axes()[i]->set().p;
+    if (!coordsOf(k, g, sys, q, x)) return k.fail(fb, Error::AgInvalidCoordSystem, c);
+    for (size_t i = 0; i < coordsIn(g, cs); ++i) x[i] = relative ? x[i] + self->Position.v[i] : self->Position.v[i];
+    if (!jointsOf(k, g, sys, x, g.kin ? g.kin->configOf(q) : KinConfigData{}, q, target)) return k.fail(fb, Error::AgUnreachable, c);
+    callGroupSetPosition(k, fb, g, self->Execute, target, false, c);
   });
 }
 
@@ -270,35 +336,51 @@ void SMC_GroupTargetPosition(sm3::SMC_GroupTargetPosition* self) {
   self->KinematicConfig = sm3::CONFIGDATA{};
   self->Position = sm3::SMC_POS_REF{};
   groupReader(self, [&](AxisGroup& g) {
+    const Kernel& k = kernel();
     const bool moving = g.state() == GroupState::Moving || g.state() == GroupState::Stopping;
     if (!g.targetValid && !moving) {   // after a halt or stop, or nothing commanded yet: where the group stands
       for (size_t i = 0; i < g.axes().size(); ++i) g.target[i] = g.axes()[i]->set().p;
+      g.targetCs = CoordSystem::ACS;
       g.targetValid = g.enabled();
     }
     self->Valid = g.targetValid;
     self->Stable = g.targetValid && !moving;
-    if (g.targetValid)
-      for (size_t i = 0; i < g.axes().size(); ++i) self->Position.v[i] = g.axes()[i]->reportPosition(g.target[i]);
+    if (!g.targetValid) return;
+    // The target in ACS (by the inverse kinematics near the members' set positions), then in CoordSystem.
+    double near[kMaxGroupAxes] = {}, q[kMaxGroupAxes] = {}, out[kMaxGroupAxes] = {};
+    for (size_t i = 0; i < g.axes().size(); ++i) near[i] = g.axes()[i]->set().p;
+    const bool ok = jointsOf(k, g, g.targetCs, g.target, g.kinConfig, near, q) && validCoordSystem(self->CoordSystem) &&
+                    self->CoordSystem != 5 && coordsOf(k, g, static_cast<CoordSystem>(self->CoordSystem), q, out);
+    if (!ok) {
+      self->Valid = self->Stable = false;
+      self->Error = true;
+      self->ErrorID = static_cast<decltype(self->ErrorID)>(smcError(Error::AgInvalidCoordSystem));
+      return;
+    }
+    const size_t n = coordsIn(g, self->CoordSystem);
+    for (size_t i = 0; i < n; ++i) self->Position.v[i] = out[i];
+    if (self->CoordSystem == 0)
+      for (size_t i = 0; i < g.axes().size(); ++i) self->Position.v[i] = g.axes()[i]->reportPosition(out[i]);
+    Kinematic kq[kMaxGroupAxes] = {};
+    for (size_t i = 0; i < g.axes().size(); ++i) kq[i].p = q[i];
+    setConfig(self->KinematicConfig, g, kq);
   });
 }
 
+// The difference quotient of the actual velocity in CoordSystem between two calls.
 void MC_GroupReadActualAcceleration(sm3::MC_GroupReadActualAcceleration* self) {
   const int64_t now = callContext().nowNs;
-  double vel[kMaxGroupAxes] = {};
-  bool read = false;
-  groupValues(self, self->Acceleration, [&](const Axis&) { return 0.0; });
-  groupReader(self, [&](AxisGroup& g) {
-    read = true;
-    for (size_t i = 0; i < g.axes().size(); ++i) vel[i] = g.axes()[i]->actVelocity();
-    const double dt = static_cast<double>(now - self->__prevNs) * 1e-9;
-    for (size_t i = 0; i < g.axes().size(); ++i)
-      self->Acceleration.v[i] = self->__prevNs >= 0 && dt > 0 ? (vel[i] - self->__prevVel[i]) / dt : 0.0;
-  });
-  if (!read) {
+  sm3::SMC_POS_REF vel{};
+  groupValues(self, vel, Quantity::Velocity, actState);
+  self->Acceleration = sm3::SMC_POS_REF{};
+  if (!self->Valid) {
     self->__prevNs = -1;   // the next enabled call starts over
     return;
   }
-  std::copy(vel, vel + kMaxGroupAxes, self->__prevVel);
+  const double dt = static_cast<double>(now - self->__prevNs) * 1e-9;
+  for (size_t i = 0; i < kMaxGroupAxes; ++i)
+    self->Acceleration.v[i] = self->__prevNs >= 0 && dt > 0 ? (vel.v[i] - self->__prevVel[i]) / dt : 0.0;
+  std::copy(vel.v, vel.v + kMaxGroupAxes, self->__prevVel);
   self->__prevNs = now;
 }
 
@@ -368,6 +450,148 @@ void MC_GroupReadConfiguration(sm3::MC_GroupReadConfiguration* self) {
   });
 }
 
+// ---- kinematics and coordinate systems
+
+// The kinematics behind a TRAFO.MC_KIN_REF_SM3: one of the TRAFO.Kin_* blocks, recognised by
+// the vtable its interface value carries (the instance's own vptr must be that vtable too);
+// null for anything else or rejected parameters.
+std::shared_ptr<const GroupKinematics> kinematicsOf(const stc_interface& itf) {
+  if (!itf.self || !itf.itable) return nullptr;
+  const void* vtable = *static_cast<const void* const*>(itf.itable);
+  if (!vtable || *static_cast<const void* const*>(itf.self) != vtable) return nullptr;
+  const char* name = static_cast<const char*>(*static_cast<const void* const*>(vtable));
+  auto is = [&](const char* n) { return name && std::strcmp(name, n) == 0; };
+  KinSpec spec;
+  double* p = spec.param;
+  if (is(sm3::Kin_Gantry2_typename)) {
+    const auto* f = static_cast<const sm3::Kin_Gantry2*>(itf.self);
+    spec.model = KinModel::Gantry2;
+    p[0] = f->dOffsetX, p[1] = f->dOffsetY;
+  } else if (is(sm3::Kin_Gantry3_typename)) {
+    const auto* f = static_cast<const sm3::Kin_Gantry3*>(itf.self);
+    spec.model = KinModel::Gantry3;
+    p[0] = f->dOffsetX, p[1] = f->dOffsetY, p[2] = f->dOffsetZ;
+  } else if (is(sm3::Kin_Scara2_Z_typename)) {
+    const auto* f = static_cast<const sm3::Kin_Scara2_Z*>(itf.self);
+    spec.model = KinModel::Scara2Z;
+    p[0] = f->dArmLength1, p[1] = f->dArmLength2, p[2] = f->dOffsetA0, p[3] = f->dOffsetA1, p[4] = f->dOffsetA2;
+  } else if (is(sm3::Kin_Tripod_Rotary_typename)) {
+    const auto* f = static_cast<const sm3::Kin_Tripod_Rotary*>(itf.self);
+    spec.model = KinModel::TripodRotary;
+    p[0] = f->dOuterRadius, p[1] = f->dInnerRadius, p[2] = f->dLengthOuter, p[3] = f->dLengthInner, p[4] = f->dRotationOffset;
+    p[5] = f->dOffsetA0, p[6] = f->dOffsetA1, p[7] = f->dOffsetA2;
+  } else if (is(sm3::Kin_Tripod_Lin_typename)) {
+    const auto* f = static_cast<const sm3::Kin_Tripod_Lin*>(itf.self);
+    spec.model = KinModel::TripodLinear;
+    p[0] = f->dOuterRadius, p[1] = f->dInnerRadius, p[2] = f->dLength, p[3] = f->dAxisAngle, p[4] = f->dRotationOffset;
+    p[5] = f->dOffsetA0, p[6] = f->dOffsetA1, p[7] = f->dOffsetA2;
+  } else {
+    return nullptr;
+  }
+  return GroupKinematics::make(spec);
+}
+
+void MC_SetKinTransform(sm3::MC_SetKinTransform* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    // Read on the rising edge only; a kinematics with more joints than members is invalid.
+    std::shared_ptr<const GroupKinematics> kin;
+    if (self->Execute && !fb.execute) {
+      kin = kinematicsOf(self->KinTransform);
+      if (kin && static_cast<size_t>(kin->joints()) > g.axes().size()) kin.reset();
+    }
+    callSetKinTransform(k, fb, g, self->Execute, std::move(kin), c);
+  });
+}
+
+void SMC_SetKinConfiguration(sm3::SMC_SetKinConfiguration* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    const KinConfigData cfg{self->ConfigData.iElbow == 0 ? 1 : self->ConfigData.iElbow, self->ConfigData.iShoulder == 0 ? 1 : self->ConfigData.iShoulder,
+                            self->ConfigData.iWrist == 0 ? 1 : self->ConfigData.iWrist};
+    callSetKinConfiguration(k, fb, g, self->Execute, cfg, c);
+  });
+}
+
+void coordArray(const sm3::MC_COORD_REF& r, double* x) {
+  x[0] = r.X, x[1] = r.Y, x[2] = r.Z, x[3] = r.A, x[4] = r.B, x[5] = r.C;
+}
+
+void MC_SetCoordinateTransform(sm3::MC_SetCoordinateTransform* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    double x[6];
+    coordArray(self->CoordTransform, x);
+    callSetCoordinateTransform(k, fb, g, self->Execute, x, self->CoordSystem, nullptr, c);
+  });
+}
+
+void MC_SetDynCoordTransform(sm3::MC_SetDynCoordTransform* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    // The master may belong to another task: it is only read (bound without claiming it).
+    AxisGroup* master = nullptr;
+    if (self->MasterAxisGroup) {
+      const uint32_t i = self->MasterAxisGroup->__stcGroup - 1u;
+      MotionSession& s = MotionSession::current();
+      master = k.group(i);
+      if (master && (i >= s.groupVars.size() || s.groupVars[i] != self->MasterAxisGroup)) master = nullptr;
+      if (!master) master = bindGroup(self->MasterAxisGroup, c);
+    }
+    double x[6];
+    coordArray(self->CoordTransform, x);
+    if (self->Execute && !fb.execute && !master) {
+      k.beginExecute(fb, self->Execute, c);
+      return k.fail(fb, Error::AgInvalidCoordSystem, c);
+    }
+    callSetCoordinateTransform(k, fb, g, self->Execute, x, self->CoordSystem, master ? master : &g, c);
+  });
+}
+
+// Enable FB: converts at every call.
+void SMC_GroupConvertPosition(sm3::SMC_GroupConvertPosition* self) {
+  self->PositionOut = sm3::SMC_POS_REF{};
+  groupReader(self, [&](AxisGroup& g) {
+    const Kernel& k = kernel();
+    auto fail = [&](Error e) {
+      self->PositionOut = sm3::SMC_POS_REF{};
+      self->Valid = false;
+      self->Error = true;
+      self->ErrorID = static_cast<decltype(self->ErrorID)>(smcError(e));
+    };
+    const int in = self->CoordSystemIn, out = self->CoordSystemOut;
+    if (!validCoordSystem(in) || !validCoordSystem(out) || in == 5 || out == 5) return fail(Error::AgInvalidCoordSystem);
+    if (!self->PositionIn) return fail(Error::AgInvalidMoveInputs);
+    double x[kMaxGroupAxes] = {}, q[kMaxGroupAxes] = {}, r[kMaxGroupAxes] = {}, tool[6] = {};
+    const size_t nIn = coordsIn(g, in);
+    for (size_t i = 0; i < nIn; ++i) x[i] = static_cast<const sm3::SMC_POS_REF*>(self->PositionIn)->v[i];
+    for (size_t i = 0; i < nIn; ++i)
+      if (!bounds::position(x[i])) return fail(Error::AgInvalidMoveInputs);
+    const double* aRef = &self->aRef.a0;
+    for (size_t i = 0; i < g.axes().size(); ++i) r[i] = aRef[i];
+    coordArray(self->ToolOffset, tool);
+    const bool useTool = self->UseToolOffsetParameter && g.kin;
+    Frame toolFrame;
+    if (useTool && !Frame::fromCoords(tool, toolFrame)) return fail(Error::AgInvalidMoveInputs);
+    // Through ACS: the tool point's coordinates -> the flange's -> joints -> the target system.
+    const CoordSystem sIn = static_cast<CoordSystem>(in), sOut = static_cast<CoordSystem>(out);
+    if (useTool && sIn != CoordSystem::ACS) {   // tool point -> flange (the flange's orientation is the position's A, B, C)
+      Frame pose;
+      Frame::fromCoords(x, pose);
+      Frame flange = pose * toolFrame.inverse();
+      flange.toCoords(x, x + 3);
+    }
+    const KinConfigData cfg{self->config.iElbow == 0 ? 1 : self->config.iElbow, self->config.iShoulder == 0 ? 1 : self->config.iShoulder,
+                            self->config.iWrist == 0 ? 1 : self->config.iWrist};
+    if (!jointsOf(k, g, sIn, x, cfg, r, q)) return fail(Error::AgUnreachable);
+    double y[kMaxGroupAxes] = {};
+    if (!coordsOf(k, g, sOut, q, y)) return fail(Error::AgUnreachable);
+    if (useTool && sOut != CoordSystem::ACS) {
+      Frame pose;
+      Frame::fromCoords(y, pose);
+      (pose * toolFrame).toCoords(y, y + 3);
+    }
+    const size_t nOut = coordsIn(g, out);
+    for (size_t i = 0; i < nOut; ++i) self->PositionOut.v[i] = y[i];
+  });
+}
+
 }  // namespace
 
 namespace stc::motion {
@@ -408,6 +632,11 @@ void registerSm3GroupNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(MC_MoveCircularAbsolute, MC_MoveCircularAbsolute)
   STC_SM3_NATIVE(MC_MoveCircularRelative, MC_MoveCircularRelative)
   STC_SM3_NATIVE(MC_GroupStop, MC_GroupStop)
+  STC_SM3_NATIVE(MC_SetKinTransform, MC_SetKinTransform)
+  STC_SM3_NATIVE(SMC_SetKinConfiguration, SMC_SetKinConfiguration)
+  STC_SM3_NATIVE(MC_SetCoordinateTransform, MC_SetCoordinateTransform)
+  STC_SM3_NATIVE(MC_SetDynCoordTransform, MC_SetDynCoordTransform)
+  STC_SM3_NATIVE(SMC_GroupConvertPosition, SMC_GroupConvertPosition)
 }
 
 }  // namespace stc::motion

@@ -116,6 +116,10 @@ FaultClass faultClass(Error e) {
     case Error::AgNotInterruptible:
     case Error::AgNotInterrupted:
       return FaultClass::WrongState;
+    case Error::AgInvalidKinematics:
+    case Error::AgUnreachable:
+    case Error::AgInvalidCoordSystem:
+      return FaultClass::InvalidParameter;
     case Error::BufferFull:
       return FaultClass::QueueFull;
     case Error::DriveError:

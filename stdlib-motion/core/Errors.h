@@ -150,6 +150,9 @@ enum class Error : uint16_t {
   AgNotStandby,           // MC_GroupSetPosition / MC_GroupContinue outside GroupStandby
   AgNotInterruptible,     // MC_GroupInterrupt with no MoveDirect / MoveLinear / MoveCircular running
   AgNotInterrupted,       // MC_GroupContinue without (matching) interrupted motion
+  AgInvalidKinematics,    // MC_SetKinTransform: not one of the kinematics, or its parameters are rejected
+  AgUnreachable,          // a Cartesian target or path point the kinematics cannot reach
+  AgInvalidCoordSystem,   // SMC_COORD_SYSTEM out of range or not allowed here; a dynamic PCS without its master
   Count_,   // the number of faults (not a fault)
 };
 

@@ -16,6 +16,7 @@
 #include "stdlib-motion/core/Axis.h"
 #include "stdlib-motion/core/Errors.h"
 #include "stdlib-motion/core/Fb.h"
+#include "stdlib-motion/group/GroupKinematics.h"
 
 namespace stc::motion {
 
@@ -111,6 +112,22 @@ public:
   // SMC_GroupTargetPosition: the target of the last queued move (members' coordinates).
   double target[kMaxGroupAxes] = {};
   bool targetValid = false;
+  CoordSystem targetCs = CoordSystem::ACS;   // the system of `target` (ACS, MCS or a dynamic PCS)
+
+  // ---- kinematics and coordinate systems (GroupKinematics.h)
+  std::shared_ptr<const GroupKinematics> kin;   // MC_SetKinTransform; null: the members are the coordinates
+  KinConfigData kinConfig;                      // SMC_SetKinConfiguration: for Cartesian PTP targets
+  Frame mcs;                                    // MCS in WCS (MC_SetCoordinateTransform)
+  // PCS_1 / PCS_2 in WCS; dynamic (MC_SetDynCoordTransform) when `master` names a group:
+  // then `frame` is the PCS relative to that group's tool.
+  struct Pcs {
+    Frame frame;
+    uint32_t master = UINT32_MAX;
+  };
+  Pcs pcs[2];
+  // The system of the path planner's coordinates: ACS, MCS (every static Cartesian move is
+  // converted into it) or a dynamic PCS (the path follows its master).
+  CoordSystem pathCs = CoordSystem::ACS;
 
   // ---- state machine (used by the group instructions and the kernel step)
   void addAxis(Axis& ax) { axes_.push_back(&ax); }

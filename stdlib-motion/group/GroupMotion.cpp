@@ -79,6 +79,7 @@ struct GroupCommand : FbBehaviour {
   GroupStopInputs stop;
   PathInputs path;
   std::vector<path::Vec> splinePoints;   // the spec's points refer to these
+  CoordSystem space = CoordSystem::ACS;  // Path: the planner space it runs in
   void start(Kernel&, FbSlot&, Axis&, int64_t) override {}   // groups start commands themselves
 };
 
@@ -245,6 +246,8 @@ std::vector<double> brakeTargets(const std::vector<Kinematic>& start, const std:
   return target;
 }
 
+Error directTargets(const Kernel& k, const AxisGroup& g, const DirectInputs& d, const double* q, double* out);
+
 // Starts fb (the group's next command) at nowNs from the members' present set states.
 Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, int64_t originNs) {
   GroupCommand& cmd = commandOf(fb);
@@ -265,9 +268,10 @@ Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, int64_t o
       const Limits* anc = cmd.ancSerial < g.ancImmediate ? g.anc : cmd.anc;   // an immediate change since: the group's
       if (!memberLimits(g, cmd.direct.velFactor, cmd.direct.accFactor, cmd.direct.jerkFactor, lim, anc)) return Error::AgAxisLimitsMissing;
       if (cmd.targets.size() != start.size()) {   // the first start (a continue keeps the targets)
-        cmd.targets.resize(start.size());
-        for (size_t i = 0; i < start.size(); ++i)
-          cmd.targets[i] = cmd.direct.relative ? start[i].p + cmd.direct.position[i] : cmd.direct.position[i];
+        double q[kMaxGroupAxes] = {}, t[kMaxGroupAxes] = {};
+        for (size_t i = 0; i < start.size(); ++i) q[i] = start[i].p;
+        if (Error e = directTargets(k, g, cmd.direct, q, t); e != Error::None) return e;
+        cmd.targets.assign(t, t + start.size());
       }
       target = cmd.targets;
     } else {
@@ -307,13 +311,37 @@ void accepted(AxisGroup& g, FbSlot& fb) {
 
 // SMC_GroupTargetPosition: the target of a move just accepted.  Relative moves add to the
 // previous queued target, or (aborting, or nothing queued) to the present position.
-void noteTarget(Kernel& k, AxisGroup& g, const double* value, bool relative, bool fromPresent, int64_t nowNs) {
-  if (relative && (fromPresent || !g.targetValid)) {
+// The target is kept in the move's space (ACS, MCS or a dynamic PCS: g.targetCs).
+void noteTarget(Kernel& k, AxisGroup& g, const double* value, bool relative, bool fromPresent, int64_t nowNs,
+                CoordSystem space = CoordSystem::ACS) {
+  if (relative && (fromPresent || !g.targetValid || g.targetCs != space)) {
     const std::vector<Kinematic> s = presentStates(k, g, nowNs);
-    for (size_t i = 0; i < s.size(); ++i) g.target[i] = s[i].p;
+    double q[kMaxGroupAxes] = {};
+    for (size_t i = 0; i < s.size(); ++i) q[i] = s[i].p;
+    if (!coordsOf(k, g, space, q, g.target)) std::copy(q, q + kMaxGroupAxes, g.target);
   }
-  for (size_t i = 0; i < g.axes().size(); ++i) g.target[i] = relative ? g.target[i] + value[i] : value[i];
+  const int n = coordCount(g, space);
+  for (int i = 0; i < n; ++i) g.target[i] = relative ? g.target[i] + value[i] : value[i];
+  g.targetCs = space;
   g.targetValid = true;
+}
+
+// A Direct move's target in its own system -> the members' targets, from the members at q.
+Error directTargets(const Kernel& k, const AxisGroup& g, const DirectInputs& d, const double* q, double* out) {
+  const size_t n = g.axes().size();
+  CoordSystem cs = static_cast<CoordSystem>(d.coordSystem);
+  const bool relative = d.relative || cs == CoordSystem::TCS;
+  if (cs == CoordSystem::TCS) cs = CoordSystem::MCS;
+  if (cs == CoordSystem::ACS || (!g.kin && cs == CoordSystem::MCS)) {
+    for (size_t i = 0; i < n; ++i) out[i] = relative ? q[i] + d.position[i] : d.position[i];
+    return Error::None;
+  }
+  double x[kMaxGroupAxes] = {};
+  if (!coordsOf(k, g, cs, q, x)) return Error::AgInvalidCoordSystem;
+  const int m = coordCount(g, cs);
+  for (int i = 0; i < m; ++i) x[i] = relative ? x[i] + d.position[i] : d.position[i];
+  if (!jointsOf(k, g, cs, x, g.kinConfig, q, out)) return Error::AgUnreachable;
+  return Error::None;
 }
 
 // The state checks every group motion command makes in its call.
@@ -348,25 +376,99 @@ bool ptpBusy(const AxisGroup& g) {
   return false;
 }
 
-path::Planner& plannerOf(AxisGroup& g) {
+// Does the path's space need the kinematics (or a moving frame) to give the joints?
+bool pathThroughKinematics(const AxisGroup& g) {
+  return g.pathCs != CoordSystem::ACS && (g.kin || g.pathCs != CoordSystem::MCS);
+}
+
+// The joints for path coordinates x in the path's space, near qNear (the path keeps the
+// configuration it started in).
+bool pathJoints(const Kernel& k, const AxisGroup& g, const double* x, const double* qNear, double* q) {
+  const KinConfigData cfg = g.kin ? g.kin->configOf(qNear) : KinConfigData{};
+  return jointsOf(k, g, g.pathCs, x, cfg, qNear, q);
+}
+
+path::Planner& plannerOf(Kernel& k, AxisGroup& g) {
   if (!g.planner) {
     path::PlannerConfig pc;
-    pc.dims = static_cast<int>(g.axes().size());
+    pc.dims = coordCount(g, g.pathCs);
     // The members' velocity and acceleration limits bound the path (when every member has them).
     bool all = true;
     for (const Axis* ax : g.axes()) all = all && ax->config().maxVelocity > 0 && ax->config().maxAcceleration > 0;
-    if (all) {
-      pc.axes.count = pc.dims;
-      for (size_t i = 0; i < g.axes().size(); ++i) {
+    if (all || pathThroughKinematics(g)) {
+      pc.axes.count = static_cast<int>(g.axes().size());
+      for (size_t i = 0; i < g.axes().size() && all; ++i) {
         const AxisConfig& ac = g.axes()[i]->config();
         pc.axes.vel[i] = capped(g.anc[i].vel, ac.maxVelocity);
         pc.axes.acc[i] = capped(g.anc[i].dec, capped(g.anc[i].acc, ac.maxAcceleration));
+      }
+      // Through the kinematics: the joints' path derivatives by central differences of the
+      // inverse (h along s), from the joints at the point itself.  Also without axis limits:
+      // the map refuses a path through a point out of reach.
+      if (pathThroughKinematics(g)) {
+        const Kernel* kp = &k;
+        const AxisGroup* gp = &g;
+        pc.axes.map = [kp, gp](const path::Vec& pos, const path::Vec& d1, const path::Vec& d2, path::Vec& dq, path::Vec& d2q) {
+          constexpr double h = 1e-4;
+          double near[kMaxGroupAxes], q0[kMaxGroupAxes], qp[kMaxGroupAxes], qm[kMaxGroupAxes];
+          path::Vec xp = pos, xm = pos;
+          for (size_t i = 0; i < gp->axes().size(); ++i) near[i] = gp->axes()[i]->set().p;
+          for (int i = 0; i < path::kMaxCoords; ++i) {
+            xp[i] += h * d1[i] + 0.5 * h * h * d2[i];
+            xm[i] += -h * d1[i] + 0.5 * h * h * d2[i];
+          }
+          if (!jointsOf(*kp, *gp, gp->pathCs, pos.data(), gp->kin ? gp->kin->configOf(near) : KinConfigData{}, near, q0)) return false;
+          if (!pathJoints(*kp, *gp, xp.data(), q0, qp) || !pathJoints(*kp, *gp, xm.data(), q0, qm)) return false;
+          dq = path::Vec{};
+          d2q = path::Vec{};
+          for (size_t i = 0; i < gp->axes().size(); ++i) {
+            dq[i] = (qp[i] - qm[i]) / (2 * h);
+            d2q[i] = (qp[i] - 2 * q0[i] + qm[i]) / (h * h);
+          }
+          return true;
+        };
+      } else if (g.kin) {
+        pc.axes.count = pc.dims;   // joint space: the members are the coordinates
       }
     }
     g.planner = std::make_unique<path::Planner>(pc);
     g.planner->setOverride(g.rate);   // an override set before the first path move
   }
   return *g.planner;
+}
+
+// The space a path move in cs runs in (GroupKinematics.h): dynamic PCS as given, ACS of a
+// group with kinematics, else MCS (a group without kinematics: MCS = the members).
+CoordSystem pathSpace(const AxisGroup& g, CoordSystem cs) {
+  if ((cs == CoordSystem::PCS1 || cs == CoordSystem::PCS2) && g.pcs[cs == CoordSystem::PCS1 ? 0 : 1].master != UINT32_MAX) return cs;
+  if (cs == CoordSystem::ACS && g.kin) return CoordSystem::ACS;
+  return CoordSystem::MCS;
+}
+
+// Moves a path move given in the static Cartesian system cs into MCS: points through the
+// frames, displacements and the plane normal rotated.  False when a frame is missing.
+bool specToMcs(const Kernel& k, const AxisGroup& g, CoordSystem cs, path::MoveSpec& m, std::vector<path::Vec>& points) {
+  if (cs == CoordSystem::MCS || cs == CoordSystem::TCS || cs == CoordSystem::ACS) return true;
+  Frame f, mcs;
+  if (!frameInWorld(k, g, cs, f) || !frameInWorld(k, g, CoordSystem::MCS, mcs)) return false;
+  const Frame t = mcs.inverse() * f;
+  auto point = [&](path::Vec& v) { return convertCoords(k, g, cs, CoordSystem::MCS, v.data(), v.data()); };
+  auto vector = [&](path::Vec& v) {
+    t.vector(v.data(), v.data());
+    if (g.kin)
+      for (int i = 0; i < 3; ++i)
+        if (!(g.kin->controlled() & (1u << i))) v[i] = 0;
+    return true;
+  };
+  bool ok = vector(m.normal);
+  if (m.relative) {
+    ok = ok && vector(m.end) && vector(m.aux);
+    for (path::Vec& p : points) ok = ok && vector(p);
+  } else {
+    ok = ok && point(m.end) && (m.centerRelative ? vector(m.aux) : point(m.aux));
+    for (path::Vec& p : points) ok = ok && point(p);
+  }
+  return ok;
 }
 
 Error pathError(const path::AppendResult& r) {
@@ -386,19 +488,28 @@ Error appendPath(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, uint64_t cy
     g.planner.reset();
     g.plannerStale = false;
   }
-  path::Planner& p = plannerOf(g);
   GroupCommand& cmd = commandOf(fb);
+  if (!pathMode(g) && cmd.space != g.pathCs) {   // another space: another planner
+    g.planner.reset();
+    g.pathCs = cmd.space;
+  }
+  path::Planner& p = plannerOf(k, g);
   if (!pathMode(g)) {
     g.pathStartCycle = cycle;
     const std::vector<Kinematic> s = presentStates(k, g, nowNs);
+    double q[kMaxGroupAxes] = {};
+    for (size_t i = 0; i < s.size(); ++i) q[i] = s[i].p;
     path::Vec pos{};
-    for (size_t i = 0; i < s.size(); ++i) pos[i] = s[i].p;
+    if (!coordsOf(k, g, g.pathCs, q, pos.data())) return Error::AgUnreachable;
     p.clear();
     p.setPosition(pos);
   }
   path::MoveSpec spec = cmd.path.spec;
   spec.points = cmd.splinePoints;
   const path::AppendResult r = p.append(spec);
+  // Through the kinematics a point out of reach fails the planner's axis check.
+  if (r.status == path::PathStatus::InvalidGeometry && r.geo == path::GeoStatus::BadParameter && pathThroughKinematics(g))
+    return Error::AgUnreachable;
   if (Error e = pathError(r); e != Error::None) return e;
   g.pathCommands.push_back({r.id, &fb});
   takeMembers(k, g, nowNs);
@@ -465,6 +576,7 @@ void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const 
   if (!factor(in.velFactor) || !factor(in.accFactor) || !factor(in.jerkFactor)) return k.fail(fb, Error::AgInvalidMoveInputs, c);
   if (!validBufferMode(in.bufferMode)) return k.fail(fb, Error::InvalidBufferMode, c);
   if (in.transitionMode < 0 || in.transitionMode > 4) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  if (!validCoordSystem(in.coordSystem)) return k.fail(fb, Error::AgInvalidCoordSystem, c);
   if (Error e = motionRefusal(k, g); e != Error::None) {
     if (e == Error::AgSingleAxisActive) groupError(k, g, e, Error::None, c.nowNs, c.cycle);
     return k.fail(fb, e, c);
@@ -481,20 +593,23 @@ void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const 
   cmd.path.spec.buffer = static_cast<path::BufferMode>(in.bufferMode);
   cmd.path.spec.transition = static_cast<path::TransitionMode>(in.transitionMode);
   cmd.splinePoints.assign(in.spec.points.begin(), in.spec.points.end());
+  const CoordSystem cs = static_cast<CoordSystem>(in.coordSystem);
+  cmd.space = pathSpace(g, cs);
+  if (cmd.space == CoordSystem::MCS && !specToMcs(k, g, cs, cmd.path.spec, cmd.splinePoints)) return k.fail(fb, Error::AgInvalidCoordSystem, c);
   fb.axis = nullptr;
-  // Behind a PTP move: buffered until it ends; aborting a moving PTP move by a path move
-  // needs a stop first (docs/motion-groups.md).
+  // Behind a PTP move (or a path in another space): buffered until it ends; aborting a moving
+  // PTP move by a path move needs a stop first (docs/motion-groups.md).
   double end[kMaxGroupAxes];
-  for (size_t i = 0; i < kMaxGroupAxes; ++i) end[i] = in.spec.end[i];
-  if (ptpBusy(g)) {
+  for (size_t i = 0; i < kMaxGroupAxes; ++i) end[i] = cmd.path.spec.end[i];
+  if (ptpBusy(g) || !g.queue.empty() || (pathMode(g) && cmd.space != g.pathCs)) {
     queueBehindOtherKind(k, g, fb, in.bufferMode, c);
-    if (!fb.out.error) noteTarget(k, g, end, in.spec.relative, false, c.nowNs);
+    if (!fb.out.error) noteTarget(k, g, end, in.spec.relative, false, c.nowNs, cmd.space);
     return;
   }
   const bool wasMoving = pathMode(g);
   if (in.bufferMode == BufferMode::Aborting) advanceToCall(g, c);   // the replaced path stops from now
   if (Error e = appendPath(k, g, fb, c.nowNs, c.cycle); e != Error::None) return k.fail(fb, e, c);
-  noteTarget(k, g, end, in.spec.relative, !wasMoving, c.nowNs);
+  noteTarget(k, g, end, in.spec.relative, !wasMoving, c.nowNs, cmd.space);
   // Aborting a moving path: the new move starts where the old one stops, which is not known
   // yet, so a relative target is unknown (SMC_GroupTargetPosition not Valid, manual case 1).
   if (wasMoving && in.bufferMode == BufferMode::Aborting && in.spec.relative) g.targetValid = false;
@@ -516,12 +631,27 @@ void callGroupMoveDirect(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, cons
   if (in.bufferMode != BufferMode::Aborting && in.bufferMode != BufferMode::Buffered) return k.fail(fb, Error::AgBlendingNotSupported, c);
   if (in.transitionMode < 0 || in.transitionMode > 4) return k.fail(fb, Error::AgInvalidMoveInputs, c);
   if (in.transitionMode != 0) return k.fail(fb, Error::AgTransitionNotAllowed, c);   // Aborting / Buffered: TMNone only
+  if (!validCoordSystem(in.coordSystem)) return k.fail(fb, Error::AgInvalidCoordSystem, c);
   if (Error e = motionRefusal(k, g); e != Error::None) {
     if (e == Error::AgSingleAxisActive) groupError(k, g, e, Error::None, c.nowNs, c.cycle);
     return k.fail(fb, e, c);
   }
   std::vector<Limits> lim;
   if (!memberLimits(g, in.velFactor, in.accFactor, in.jerkFactor, lim)) return k.fail(fb, Error::AgAxisLimitsMissing, c);
+  // An absolute Cartesian target must be reachable (checked again when the move starts).
+  const CoordSystem dcs = static_cast<CoordSystem>(in.coordSystem);
+  const CoordSystem space = dcs == CoordSystem::ACS || !g.kin ? CoordSystem::ACS : dcs == CoordSystem::TCS ? CoordSystem::MCS : dcs;
+  double noted[kMaxGroupAxes];
+  std::copy(in.position, in.position + kMaxGroupAxes, noted);
+  if (space != CoordSystem::ACS || (dcs != CoordSystem::ACS && dcs != CoordSystem::TCS)) {
+    double q[kMaxGroupAxes] = {}, t[kMaxGroupAxes] = {};
+    const std::vector<Kinematic> s = presentStates(k, g, c.nowNs);
+    for (size_t i = 0; i < s.size(); ++i) q[i] = s[i].p;
+    if (!in.relative && dcs != CoordSystem::TCS) {
+      if (Error e = directTargets(k, g, in, q, t); e != Error::None) return k.fail(fb, e, c);
+      if (!g.kin) std::copy(t, t + kMaxGroupAxes, noted);   // no kinematics: the members' targets
+    }
+  }
   GroupCommand& cmd = commandOf(fb);
   cmd.kind = GroupCommand::Kind::Direct;
   cmd.direct = in;
@@ -529,13 +659,15 @@ void callGroupMoveDirect(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, cons
   cmd.ancSerial = g.ancSerial;
   fb.axis = nullptr;
   // Behind path moves: buffered until the path ends; a moving path is not aborted by a PTP move.
+  const bool rel = in.relative || dcs == CoordSystem::TCS;
+  const CoordSystem noteSpace = g.kin ? space : CoordSystem::ACS;
   if (pathMode(g)) {
     queueBehindOtherKind(k, g, fb, in.bufferMode, c);
-    if (!fb.out.error) noteTarget(k, g, in.position, in.relative, false, c.nowNs);
+    if (!fb.out.error) noteTarget(k, g, noted, rel, false, c.nowNs, noteSpace);
     return;
   }
   const bool idle = !g.pending && !g.active && g.queue.empty();
-  noteTarget(k, g, in.position, in.relative, in.bufferMode == BufferMode::Aborting || idle, c.nowNs);
+  noteTarget(k, g, noted, rel, in.bufferMode == BufferMode::Aborting || idle, c.nowNs, noteSpace);
   if (in.bufferMode == BufferMode::Aborting || idle) {
     // The running and buffered commands end now; fb starts in this cycle's step.
     endCommands(k, g, &c, c.cycle, Error::None);
@@ -642,7 +774,8 @@ void startQueued(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle, int64_t
     }
     return;
   }
-  while (!g.queue.empty() && commandOf(*g.queue.front()).kind == GroupCommand::Kind::Path) {
+  const CoordSystem space = commandOf(*next).space;
+  while (!g.queue.empty() && commandOf(*g.queue.front()).kind == GroupCommand::Kind::Path && commandOf(*g.queue.front()).space == space) {
     FbSlot* p = g.queue.front();
     g.queue.erase(g.queue.begin());
     if (Error e = appendPath(k, g, *p, nowNs, cycle); e != Error::None) k.finish(*p, nullptr, cycle, false, false, e);
@@ -657,15 +790,34 @@ void stepPath(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64
       return groupError(k, g, Error::FbWasntCalledDuringMotion, Error::None, nowNs, cycle);
   const double dt = cycle == g.pathStartCycle || cycle == g.pathAdvancedCycle ? 0.0 : static_cast<double>(intervalNs) * 1e-9;
   const path::Sample& s = g.planner->advance(dt);
-  for (size_t i = 0; i < g.axes().size() && i < g.gens.size(); ++i) {
-    g.gens[i]->state = Kinematic{s.pos[i], s.vel[i], s.acc[i]};
-    g.gens[i]->tSet = g.axes()[i]->movement().t(nowNs);
+  if (pathThroughKinematics(g)) {
+    // The joints at the sample and at +-h seconds along it: velocities and accelerations by
+    // central differences (exact for the quadratic the sample describes).
+    constexpr double h = 1e-4;
+    double near[kMaxGroupAxes], q0[kMaxGroupAxes], qp[kMaxGroupAxes], qm[kMaxGroupAxes];
+    path::Vec xp = s.pos, xm = s.pos;
+    for (int i = 0; i < path::kMaxCoords; ++i) {
+      xp[i] += h * s.vel[i] + 0.5 * h * h * s.acc[i];
+      xm[i] += -h * s.vel[i] + 0.5 * h * h * s.acc[i];
+    }
+    for (size_t i = 0; i < g.gens.size(); ++i) near[i] = g.gens[i]->state.p;
+    if (!pathJoints(k, g, s.pos.data(), near, q0) || !pathJoints(k, g, xp.data(), q0, qp) || !pathJoints(k, g, xm.data(), q0, qm))
+      return groupError(k, g, Error::AgUnreachable, Error::None, nowNs, cycle);
+    for (size_t i = 0; i < g.axes().size() && i < g.gens.size(); ++i) {
+      g.gens[i]->state = Kinematic{q0[i], (qp[i] - qm[i]) / (2 * h), (qp[i] - 2 * q0[i] + qm[i]) / (h * h)};
+      g.gens[i]->tSet = g.axes()[i]->movement().t(nowNs);
+    }
+  } else {
+    for (size_t i = 0; i < g.axes().size() && i < g.gens.size(); ++i) {
+      g.gens[i]->state = Kinematic{s.pos[i], s.vel[i], s.acc[i]};
+      g.gens[i]->tSet = g.axes()[i]->movement().t(nowNs);
+    }
   }
   drainPathEvents(k, g, nullptr, cycle);
   if (g.pathInterrupted && g.interrupter && s.held && !s.moving) {
     FbSlot* it = g.interrupter;
     g.interrupter = nullptr;
-    for (size_t i = 0; i < g.axes().size(); ++i) g.continuePos[i] = s.pos[i];
+    for (size_t i = 0; i < g.axes().size() && i < g.gens.size(); ++i) g.continuePos[i] = g.gens[i]->state.p;
     k.finish(*it, nullptr, cycle, true, false, Error::None);
     for (auto& [id, fb] : g.pathCommands)
       if (fb->out.active) {
@@ -944,6 +1096,64 @@ bool continuePosition(const AxisGroup& g, uint32_t token, double* position) {
   if (!g.enabled() || g.interrupter || !(g.interrupted || g.pathInterrupted) || token != g.interruptToken) return false;
   std::copy(g.continuePos, g.continuePos + kMaxGroupAxes, position);
   return true;
+}
+
+}  // namespace stc::motion
+
+namespace stc::motion {
+
+namespace {
+// Kinematics and frames change only while the group stands still with nothing to continue.
+Error configRefusal(const AxisGroup& g) {
+  if (g.state() != GroupState::Disabled && g.state() != GroupState::Standby) return Error::AgNotStandby;
+  if (g.active || g.pending || !g.queue.empty() || pathMode(g) || g.interrupted || g.pathInterrupted) return Error::AgNotStandby;
+  return Error::None;
+}
+}  // namespace
+
+void callSetKinTransform(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, std::shared_ptr<const GroupKinematics> kin, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  fb.axis = nullptr;
+  if (!kin) return k.fail(fb, Error::AgInvalidKinematics, c);
+  if (Error e = configRefusal(g); e != Error::None) return k.fail(fb, e, c);
+  g.kin = std::move(kin);
+  g.planner.reset();   // its space and coordinates change
+  g.pathCs = CoordSystem::ACS;
+  g.targetValid = false;
+  k.finish(fb, &c, c.cycle, true, false, Error::None);
+}
+
+void callSetKinConfiguration(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const KinConfigData& cfg, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  fb.axis = nullptr;
+  auto branch = [](int b) { return b >= -1 && b <= 1; };
+  if (!branch(cfg.elbow) || !branch(cfg.shoulder) || !branch(cfg.wrist)) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  g.kinConfig = cfg;   // for the Cartesian PTP targets commanded from now on
+  k.finish(fb, &c, c.cycle, true, false, Error::None);
+}
+
+void callSetCoordinateTransform(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const double* coords, int coordSystem,
+                                const AxisGroup* master, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  fb.axis = nullptr;
+  const CoordSystem cs = static_cast<CoordSystem>(coordSystem);
+  const bool pcs = cs == CoordSystem::PCS1 || cs == CoordSystem::PCS2;
+  if (!validCoordSystem(coordSystem) || !(pcs || (cs == CoordSystem::MCS && !master))) return k.fail(fb, Error::AgInvalidCoordSystem, c);
+  Frame f;
+  if (!Frame::fromCoords(coords, f)) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  if (master == &g) return k.fail(fb, Error::AgInvalidCoordSystem, c);   // a group cannot follow itself
+  if (Error e = configRefusal(g); e != Error::None) return k.fail(fb, e, c);
+  if (cs == CoordSystem::MCS) {
+    g.mcs = f;
+  } else {
+    AxisGroup::Pcs& p = g.pcs[cs == CoordSystem::PCS1 ? 0 : 1];
+    p.frame = f;
+    p.master = master ? master->index() : UINT32_MAX;
+  }
+  g.planner.reset();
+  g.pathCs = CoordSystem::ACS;
+  g.targetValid = false;
+  k.finish(fb, &c, c.cycle, true, false, Error::None);
 }
 
 }  // namespace stc::motion

@@ -50,13 +50,19 @@ struct DirectInputs {
   double velFactor = 1, accFactor = 1, jerkFactor = 1;
   BufferMode bufferMode = BufferMode::Aborting;
   int transitionMode = 0;                // MC_TRANSITION_MODE (0 TMNone)
+  // The system of `position` (TCS: relative in MCS).  Cartesian targets become joint
+  // targets by the inverse kinematics with the group's configuration (SMC_SetKinConfiguration).
+  int coordSystem = 0;
 };
 void callGroupMoveDirect(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const DirectInputs& in, const CallCtx& c);
 
-// MC_MoveLinear* / MC_MoveCircular*: a path move (coordinates = the members' positions
-// while the group has no kinematics), latched at the edge.
+// MC_MoveLinear* / MC_MoveCircular*: a path move in coordSystem (coordinates as
+// GroupKinematics.h lays them out), latched at the edge.  Static Cartesian systems are
+// converted into MCS, where the planner runs; ACS paths of a group with kinematics run in
+// joint space; a dynamic PCS keeps its own coordinates (the path follows the master).
 struct PathInputs {
   path::MoveSpec spec;
+  int coordSystem = 0;                            // SMC_COORD_SYSTEM (TCS: relative in MCS)
   BufferMode bufferMode = BufferMode::Aborting;   // checked, then mapped to spec.buffer
   int transitionMode = 0;                         // MC_TRANSITION_MODE, mapped to spec.transition
   double velFactor = 1, accFactor = 1, jerkFactor = 1;
@@ -99,6 +105,15 @@ void callSetDynamicLimitFactors(Kernel& k, FbSlot& fb, AxisGroup& g, bool execut
 // moves commanded afterwards.  Path moves take them when they are handed to the planner.
 void callSetAncillaryLimits(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, bool pathLimits, bool immediately, const Limits* lim,
                            const CallCtx& c);
+
+// MC_SetKinTransform / SMC_SetKinConfiguration / MC_SetCoordinateTransform /
+// MC_SetDynCoordTransform: only while the group stands (GroupDisabled or GroupStandby, nothing
+// interrupted); Done in the call of the edge.  kin null: an invalid kinematics (error).
+void callSetKinTransform(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, std::shared_ptr<const GroupKinematics> kin, const CallCtx& c);
+void callSetKinConfiguration(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const KinConfigData& cfg, const CallCtx& c);
+// coords: X, Y, Z, A, B, C of the frame; master: the master group (dynamic PCS) or null.
+void callSetCoordinateTransform(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const double* coords, int coordSystem,
+                                const AxisGroup* master, const CallCtx& c);
 
 // SMC_GroupGetContinuePosition: where the motion interrupted under `token` stands (members'
 // coordinates); false when no such interruption can be continued.

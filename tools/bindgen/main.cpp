@@ -28,6 +28,23 @@ struct Gen {
   std::ostringstream out;
   std::set<const Type*> emitted;
 
+  // C++ name of an ST type: a namespace's dot becomes '_' (TRAFO.CONFIGDATA -> TRAFO_CONFIGDATA).
+  static std::string cName(const std::string& st) {
+    std::string n = st;
+    for (char& ch : n)
+      if (ch == '.') ch = '_';
+    return n;
+  }
+
+  // {attribute 'native_layout'}: an ST block the natives read (its instance struct is
+  // emitted) but which has no native body.
+  static bool hasAttribute(const sema::Symbol* s, const char* name) {
+    if (!s->pou || !s->pou->decl) return false;
+    for (const ast::Pragma& p : s->pou->decl->attributes)
+      if (equalsIgnoreCase(p.name, name)) return true;
+    return false;
+  }
+
   static bool isNative(const sema::Symbol* s) {
     if (!s->pou || !s->pou->decl) return false;
     for (const ast::Pragma& p : s->pou->decl->attributes)
@@ -70,7 +87,7 @@ struct Gen {
       }
       case TypeKind::Struct: case TypeKind::Union: case TypeKind::FunctionBlock: case TypeKind::Program:
         emitStruct(t);
-        return t->name;
+        return cName(t->name);
       default: return "void";
     }
   }
@@ -86,6 +103,7 @@ struct Gen {
 
   void emitStruct(const Type* t) {
     if (!emitted.insert(t).second) return;
+    const std::string tn = cName(t->name);
     const sema::TypeLayout& l = layout.of(t);
     std::ostringstream body;
     std::vector<std::string> asserts;
@@ -98,23 +116,25 @@ struct Gen {
       std::string ct = !f.type ? "const void*" : f.indirect ? inOutType(f.type) : cType(f.type, suffix);
       std::string name = f.type ? f.name : "__vptr";
       body << "  " << ct << " " << name << suffix << ";   // offset " << f.offset << (f.indirect ? ", VAR_IN_OUT (address)" : "") << "\n";
-      asserts.push_back("static_assert(offsetof(" + t->name + ", " + name + ") == " + std::to_string(f.offset) + ");");
+      asserts.push_back("static_assert(offsetof(" + tn + ", " + name + ") == " + std::to_string(f.offset) + ");");
       uint64_t size = !f.type || f.indirect ? 8 : layout.sizeOf(f.type);
       if (!isUnion) pos = f.offset + size;
     }
     if (!isUnion && l.size > pos) body << "  uint8_t _pad" << pad++ << "[" << l.size - pos << "];\n";
     // A UNION's members share offset 0: a C++ union (a struct would lay them out one after another).
-    out << (isUnion ? "union" : "struct") << " alignas(" << l.align << ") " << t->name << (isUnion ? "_u" : "") << " {\n" << body.str() << "};\n";
-    if (isUnion) out << "using " << t->name << " = " << t->name << "_u;\n";
-    out << "static_assert(sizeof(" << t->name << ") == " << l.size << ");\n";
+    out << (isUnion ? "union" : "struct") << " alignas(" << l.align << ") " << tn << (isUnion ? "_u" : "") << " {\n" << body.str() << "};\n";
+    if (isUnion) out << "using " << tn << " = " << tn << "_u;\n";
+    out << "static_assert(sizeof(" << tn << ") == " << l.size << ");\n";
     for (auto& a : asserts) out << a << "\n";
-    out << "inline constexpr uint64_t " << t->name << "_layout = " << layout.hash(t) << "ull;\n\n";
+    out << "inline constexpr uint64_t " << tn << "_layout = " << layout.hash(t) << "ull;\n";
+    // The ST name the vtable carries (natives identify an interface's block by it).
+    out << "inline constexpr const char* " << tn << "_typename = \"" << t->name << "\";\n\n";
   }
 
   std::string paramType(const Type* t, bool byPointer, bool isConst) {
     std::string suffix;
     std::string ct = cType(t, suffix);
-    bool aggregate = !suffix.empty() || ct == t->underlying()->name || ct == "stc_interface";
+    bool aggregate = !suffix.empty() || ct == cName(t->underlying()->name) || ct == "stc_interface";
     if (byPointer || aggregate) return (isConst && !byPointer ? "const " : "") + ct + "*";
     return ct;
   }
@@ -187,11 +207,13 @@ int main(int argc, char** argv) {
         << argv[2] << " {\n\n";
   for (sema::Symbol* p : m.pous) {
     // Only the library's own declarations (not the standard library's).
-    if (!Gen::isNative(p) || p->declRange.begin.file == 0) continue;
+    const bool layoutOnly = p->kind == sema::Symbol::FunctionBlock && Gen::hasAttribute(p, "native_layout");
+    if ((!Gen::isNative(p) && !layoutOnly) || p->declRange.begin.file == 0) continue;
     std::string path = c.sources().file(p->declRange.begin.file).path;
     bool mine = false;
     for (int i = first; i < argc; ++i) mine = mine || path == argv[i];
-    if (mine) g.emitPou(p);
+    if (mine && layoutOnly) g.emitStruct(p->type);
+    else if (mine) g.emitPou(p);
   }
   g.out << "}  // namespace " << argv[2] << "\n";
   std::ofstream f(argv[1]);
