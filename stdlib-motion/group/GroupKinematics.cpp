@@ -302,13 +302,18 @@ bool convertCoords(const Kernel& k, const AxisGroup& g, CoordSystem from, CoordS
   return true;
 }
 
+namespace {
+// ACS to ACS is a copy and TCS holds no positions: true when cs is one of them (ok: the result).
+bool noConversion(const AxisGroup& g, CoordSystem cs, const double* in, double* out, bool& ok) {
+  ok = cs == CoordSystem::ACS;
+  if (ok) std::copy(in, in + g.axes().size(), out);
+  return cs == CoordSystem::ACS || cs == CoordSystem::TCS;
+}
+}  // namespace
+
 bool coordsOf(const Kernel& k, const AxisGroup& g, CoordSystem cs, const double* q, double* x) {
   const size_t n = g.axes().size();
-  if (cs == CoordSystem::ACS) {
-    std::copy(q, q + n, x);
-    return true;
-  }
-  if (cs == CoordSystem::TCS) return false;
+  if (bool ok; noConversion(g, cs, q, x, ok)) return ok;
   double mcs[kMaxGroupAxes] = {};
   if (g.kin) {
     if (!g.kin->forward(q, mcs)) return false;
@@ -322,11 +327,7 @@ bool coordsOf(const Kernel& k, const AxisGroup& g, CoordSystem cs, const double*
 bool jointsOf(const Kernel& k, const AxisGroup& g, CoordSystem cs, const double* x, const KinConfigData& c, const double* qNear,
               double* q) {
   const size_t n = g.axes().size();
-  if (cs == CoordSystem::ACS) {
-    std::copy(x, x + n, q);
-    return true;
-  }
-  if (cs == CoordSystem::TCS) return false;
+  if (bool ok; noConversion(g, cs, x, q, ok)) return ok;
   double mcs[kMaxGroupAxes] = {};
   if (!convertCoords(k, g, cs, CoordSystem::MCS, x, mcs)) return false;
   if (!g.kin) {
