@@ -31,6 +31,16 @@ void holdAll(const SyncAxis* axes, int n, Profile* out) {
   }
 }
 
+// planVelocity's checks of the limits and the start state, without planning
+// (a Profile per axis only to validate was a sixth of a phase-synchronised plan).
+PlanStatus checkAxis(const SyncAxis& a) {
+  const Limits& l = a.lim;
+  auto pos = [](double x) { return std::isfinite(x) && x > 0; };
+  if (!pos(l.vel) || !pos(l.acc) || !pos(l.dec) || std::isnan(l.jerk) || l.jerk < 0) return PlanStatus::InvalidLimits;
+  if (!std::isfinite(a.start.p) || !std::isfinite(a.start.v) || !std::isfinite(a.start.a)) return PlanStatus::InvalidState;
+  return PlanStatus::Ok;
+}
+
 inline bool closeTo(double a, double b) {   // (as TimedFamily: the same tolerance)
   return std::isfinite(b) && std::fabs(a - b) <= 1e-12 * std::max(1.0, std::fabs(b));
 }
@@ -137,9 +147,8 @@ bool restTimed(const SyncAxis& ax, double T, Profile& out) {
   return std::fabs(out.duration() - T) <= 1e-10 * std::max(1.0, T);
 }
 
-// TimedFamily objects built only for the axes that need one.  A TimedFamily holds
-// a Profile whose segments are zeroed on construction: constructing all
-// kMaxSyncAxes of them up front was a large part of a 6-axis plan.
+// TimedFamily objects built only for the axes that need one (each is ~1.6 KB and
+// zeroes a Profile on construction; an array of kMaxSyncAxes built them all).
 static_assert(std::is_trivially_destructible_v<detail::TimedFamily>);
 class Families {
 public:
@@ -169,8 +178,7 @@ SyncResult planSynchronized(const SyncAxis* axes, int n, Profile* out) {
   }
   // Axes at rest (and axes that stay) can arrive at any time after their minimum:
   // their optimal plan goes straight into out[i] and no family is built.  The
-  // others get a TimedFamily, constructed only for them (each holds a Profile:
-  // default-constructing kMaxSyncAxes of them cost more than a rest-to-rest plan).
+  // others get a TimedFamily, constructed only for them.
   Families fams;
   bool rest[kMaxSyncAxes];
   bool optIn[kMaxSyncAxes];   // out[i] holds axis i's optimal plan
@@ -267,15 +275,14 @@ SyncResult planPhaseSynchronized(const SyncAxis* axes, int n, Profile* out) {
     if (n > 0) holdAll(axes, std::min(n, kMaxSyncAxes), out);
     return res;
   }
-  // validate each axis as the one-axis planner does (a hold plan: cheap)
+  // validate each axis as the one-axis planner does
   Limits path{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
               std::numeric_limits<double>::infinity(), 0};
   double jerkBound = std::numeric_limits<double>::infinity();
   bool anyTrap = false, anyMove = false;
   for (int i = 0; i < n; ++i) {
     const SyncAxis& a = axes[i];
-    Profile tmp;
-    const PlanStatus st = planVelocity(a.start, 0, a.lim, tmp);
+    const PlanStatus st = checkAxis(a);
     PlanStatus st2 = PlanStatus::Ok;
     if (st == PlanStatus::Ok && (!std::isfinite(a.target) || !std::isfinite(a.vEnd))) st2 = PlanStatus::InvalidTarget;
     if (st != PlanStatus::Ok || st2 != PlanStatus::Ok) {

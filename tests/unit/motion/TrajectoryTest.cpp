@@ -1002,3 +1002,36 @@ TEST(SyncPlanProperty, SameAsFamilyOnlyPlanner) {
   std::printf("sync vs family-only: %d sets, %llu axes at rest, max |dT| %.3g s\n", kCases,
               (unsigned long long)restAxes, maxDT);
 }
+
+// planPhaseSynchronized validates without planning: the same statuses as the
+// one-axis planner's checks (planVelocity, then target and end velocity).
+TEST(SyncPlan, PhaseSynchronizedValidatesAsTheOneAxisPlanner) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double bad[] = {0, -1, nan, kInf, -kInf};
+  auto expect = [](const SyncAxis& a) {
+    Profile tmp;
+    const PlanStatus st = planVelocity(a.start, 0, a.lim, tmp);
+    if (st == PlanStatus::InvalidLimits) return SyncStatus::InvalidLimits;
+    if (st == PlanStatus::InvalidState) return SyncStatus::InvalidState;
+    if (!std::isfinite(a.target) || !std::isfinite(a.vEnd)) return SyncStatus::InvalidTarget;
+    return SyncStatus::Ok;
+  };
+  int checked = 0;
+  for (int field = 0; field < 9; ++field) {
+    for (double x : bad) {
+      SyncAxis ax[2];
+      for (auto& a : ax) { a.target = 1; a.lim = L(10, 20, 20, 100); }
+      SyncAxis& a = ax[1];
+      double* f[] = {&a.lim.vel, &a.lim.acc, &a.lim.dec, &a.lim.jerk, &a.start.p, &a.start.v, &a.start.a, &a.target, &a.vEnd};
+      *f[field] = x;
+      Profile out[2];
+      const SyncResult r = planPhaseSynchronized(ax, 2, out);
+      const SyncStatus want = expect(a);
+      if (want == SyncStatus::Ok) continue;   // (e.g. jerk 0 or inf; a start v or a of 0)
+      EXPECT_EQ(r.status, want) << field << " " << x;
+      EXPECT_EQ(r.axis, 1);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 30);
+}
