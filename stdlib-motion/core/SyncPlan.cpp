@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
+#include <type_traits>
 
 #include "stdlib-motion/core/TrajectoryFamily.h"
 
@@ -29,6 +31,142 @@ void holdAll(const SyncAxis* axes, int n, Profile* out) {
   }
 }
 
+// planVelocity's checks of the limits and the start state, without planning
+// (a Profile per axis only to validate was a sixth of a phase-synchronised plan).
+PlanStatus checkAxis(const SyncAxis& a) {
+  const Limits& l = a.lim;
+  auto pos = [](double x) { return std::isfinite(x) && x > 0; };
+  if (!pos(l.vel) || !pos(l.acc) || !pos(l.dec) || std::isnan(l.jerk) || l.jerk < 0) return PlanStatus::InvalidLimits;
+  if (!std::isfinite(a.start.p) || !std::isfinite(a.start.v) || !std::isfinite(a.start.a)) return PlanStatus::InvalidState;
+  return PlanStatus::Ok;
+}
+
+inline bool closeTo(double a, double b) {   // (as TimedFamily: the same tolerance)
+  return std::isfinite(b) && std::fabs(a - b) <= 1e-12 * std::max(1.0, std::fabs(b));
+}
+
+inline bool jerkMode(const Limits& l) { return l.jerk > 0 && std::isfinite(l.jerk); }
+
+// An axis that starts and ends at rest (v = 0, a = 0 where the jerk is limited,
+// vEnd = 0): its feasible durations are [minimum, inf) (no blocked interval), so
+// it needs no TimedFamily.  (Invalid inputs are caught by planPosition.)
+inline bool restLike(const SyncAxis& a) {
+  return a.start.v == 0 && a.vEnd == 0 && (!jerkMode(a.lim) || a.start.a == 0);
+}
+
+// The plan of duration T > minimum of a rest axis: the member of TimedFamily's
+// family with peak velocity vp, built with the same arithmetic as TimedFamily::plan
+// (transitions 0 -> vp with acc, vp -> 0 with dec, cruise T - T1 - T2).  For
+// rest to rest D(vp) = vp (T1 + T2) / 2, so G(vp) = (T1 + T2) / 2 + |delta| / vp;
+// in y = 1 / vp each transition time is convex (trapezoid 1/(A y) + A/J, triangle
+// 2/sqrt(J y), C1 where they meet), so G(y) is convex and Newton from
+// y0 = T/|delta| (G(y0) > T) falls monotonically onto the root on the branch
+// where G rises, i.e. vp below the optimal peak; no bracketing, no family.
+// A target equal to the start: stand still for T (the family's stop-and-wait plan).
+// False when the result does not last T within TimedFamily's tolerance.
+bool restTimed(const SyncAxis& ax, double T, Profile& out) {
+  const bool jm = jerkMode(ax.lim);
+  const double delta = ax.target - ax.start.p;
+  out.clear(ax.start);
+  if (delta == 0) {
+    out.snap(0.0, 0.0);
+    if (T > 0) {
+      if (jm) out.push(T, 0.0);
+      else out.pushAcc(T, 0.0);
+    }
+    out.finish({ax.target, ax.vEnd, 0.0});
+    return std::fabs(out.duration() - T) <= 1e-10 * std::max(1.0, T);
+  }
+  const double dir = delta > 0 ? 1.0 : -1.0, D = std::fabs(delta);
+  const double acc = ax.lim.acc, dec = ax.lim.dec;
+  const double J = jm ? ax.lim.jerk : 0, iJ = jm ? 1 / J : 0, iAcc = 1 / acc, iDec = 1 / dec;
+  // one transition's time and its derivative in y
+  auto tr = [&](double y, double A, double iA, double& dt) {
+    if (!jm || J >= A * A * y) {   // trapezoid (J vp >= A^2)
+      dt = -iA / (y * y);
+      return iA / y + A * iJ;
+    }
+    const double r = 1 / std::sqrt(J * y);   // triangle 2 / sqrt(J y)
+    dt = -r / y;
+    return 2 * r;
+  };
+  double y = T / D;
+  for (int it = 0; it < 100; ++it) {
+    double d1, d2;
+    const double g = 0.5 * (tr(y, acc, iAcc, d1) + tr(y, dec, iDec, d2)) + D * y - T;
+    const double dg = 0.5 * (d1 + d2) + D;
+    if (!(g > 0 && dg > 0)) break;
+    const double step = g / dg;
+    y -= step;
+    if (!(step > 1e-16 * y)) break;
+  }
+  const double vp = std::min(1 / y, ax.lim.vel);
+  // the two transitions exactly as the one-axis planner builds them
+  double d1[3], d2[3], j1[3] = {dir * J, 0, -dir * J}, j2[3] = {-dir * J, 0, dir * J};
+  auto jerkTrans = [&](double A, double iA, double* d) {
+    const double ap2 = J * vp;
+    if (ap2 <= A * A) {
+      const double ap = std::sqrt(std::max(ap2, 0.0));
+      d[0] = std::max(0.0, ap * iJ);
+      d[1] = 0;
+      d[2] = ap * iJ;
+    } else {
+      d[0] = A * iJ;
+      d[1] = std::max(0.0, vp * iA - (2 * A * A) * (0.5 * iJ * iA));
+      d[2] = A * iJ;
+    }
+    return d[0] + d[1] + d[2];
+  };
+  double T1, T2;
+  if (jm) {
+    T1 = jerkTrans(acc, iAcc, d1);
+    T2 = jerkTrans(dec, iDec, d2);
+  } else {
+    T1 = vp / acc;
+    T2 = vp / dec;
+  }
+  const double tc = std::max(0.0, T - T1 - T2);
+  if (jm) {
+    for (int k = 0; k < 3; ++k)
+      if (d1[k] > 0) out.push(d1[k], j1[k]);
+  } else if (T1 > 0) {
+    out.pushAcc(T1, dir * acc);
+  }
+  out.snap(dir * vp, 0.0);
+  if (tc > 0) {
+    if (jm) out.push(tc, 0.0);
+    else out.pushAcc(tc, 0.0);
+  }
+  if (jm) {
+    for (int k = 0; k < 3; ++k)
+      if (d2[k] > 0) out.push(d2[k], j2[k]);
+  } else if (T2 > 0) {
+    out.pushAcc(T2, -dir * dec);
+  }
+  out.finish({ax.target, ax.vEnd, 0.0});
+  return std::fabs(out.duration() - T) <= 1e-10 * std::max(1.0, T);
+}
+
+// TimedFamily objects built only for the axes that need one (each is ~1.6 KB and
+// zeroes a Profile on construction; an array of kMaxSyncAxes built them all).
+static_assert(std::is_trivially_destructible_v<detail::TimedFamily>);
+class Families {
+public:
+  PlanStatus make(int i, const SyncAxis& a) {
+    f_[i] = new (&slot_[i]) detail::TimedFamily;
+    return f_[i]->init(a.start, a.target, a.vEnd, a.lim);
+  }
+  bool has(int i) const { return f_[i] != nullptr; }
+  detail::TimedFamily& operator[](int i) { return *f_[i]; }
+
+private:
+  struct alignas(detail::TimedFamily) Slot {
+    unsigned char b[sizeof(detail::TimedFamily)];
+  };
+  Slot slot_[kMaxSyncAxes];
+  detail::TimedFamily* f_[kMaxSyncAxes] = {};
+};
+
 }  // namespace
 
 SyncResult planSynchronized(const SyncAxis* axes, int n, Profile* out) {
@@ -38,36 +176,70 @@ SyncResult planSynchronized(const SyncAxis* axes, int n, Profile* out) {
     if (n > 0) holdAll(axes, std::min(n, kMaxSyncAxes), out);
     return res;
   }
-  detail::TimedFamily fam[kMaxSyncAxes];
+  // Axes at rest (and axes that stay) can arrive at any time after their minimum:
+  // their optimal plan goes straight into out[i] and no family is built.  The
+  // others get a TimedFamily, constructed only for them.
+  Families fams;
+  bool rest[kMaxSyncAxes];
+  bool optIn[kMaxSyncAxes];   // out[i] holds axis i's optimal plan
+  double tMin[kMaxSyncAxes];
   double tLow = 0;
+  int nFam = 0;
   for (int i = 0; i < n; ++i) {
-    const PlanStatus st = fam[i].init(axes[i].start, axes[i].target, axes[i].vEnd, axes[i].lim);
+    const SyncAxis& a = axes[i];
+    rest[i] = restLike(a);
+    PlanStatus st;
+    if (rest[i]) {
+      st = planPosition(a.start, a.target, a.vEnd, a.lim, out[i]);
+      tMin[i] = out[i].duration();
+    } else {
+      st = fams.make(i, a);
+      tMin[i] = fams[i].minimum();
+      ++nFam;
+    }
     if (st != PlanStatus::Ok) {
       res.status = fromPlan(st);
       res.axis = i;
       holdAll(axes, n, out);
       return res;
     }
-    tLow = std::max(tLow, fam[i].minimum());
+    optIn[i] = rest[i];
+    tLow = std::max(tLow, tMin[i]);
   }
-  // candidates: the latest minimum and every start of a feasible interval after it
+  // axis i's plan of duration T (false: none; then out[i] may hold anything)
+  auto planAxis = [&](int i, double T) {
+    if (!rest[i]) return fams[i].plan(T, out[i]);
+    if (closeTo(T, tMin[i])) {
+      if (!optIn[i]) planPosition(axes[i].start, axes[i].target, axes[i].vEnd, axes[i].lim, out[i]);
+      optIn[i] = true;
+      return true;
+    }
+    optIn[i] = false;
+    if (restTimed(axes[i], T, out[i])) return true;
+    // (rounding beyond the tolerance: the general family decides, as before)
+    if (!fams.has(i)) fams.make(i, axes[i]);
+    return fams[i].plan(T, out[i]);
+  };
+  // Every axis without a family accepts every T >= tLow.  When no family has a
+  // start after tLow, tLow is the only candidate (rest-to-rest sets).
   constexpr int kCap = kMaxSyncAxes * (detail::TimedFamily::kMaxPoints + 2) + 1;
   double cand[kCap];
   int nc = 0;
   cand[nc++] = tLow;
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < n && nFam > 0; ++i) {
+    if (rest[i]) continue;
     double s[detail::TimedFamily::kMaxPoints + 2];
-    const int k = fam[i].starts(s, detail::TimedFamily::kMaxPoints + 2);
+    const int k = fams[i].starts(s, detail::TimedFamily::kMaxPoints + 2);
     for (int j = 0; j < k; ++j)
       if (s[j] > tLow && nc < kCap) cand[nc++] = s[j];
   }
-  std::sort(cand, cand + nc);
+  if (nc > 1) std::sort(cand, cand + nc);
   // the first candidate at which every axis has a plan (cheap test first)
   double T = cand[nc - 1];
   for (int c = 0; c < nc; ++c) {
     bool all = true;
-    for (int i = 0; i < n && all; ++i) all = fam[i].feasible(cand[c]);
-    for (int i = 0; i < n && all; ++i) all = fam[i].plan(cand[c], out[i]);
+    for (int i = 0; i < n && all; ++i) all = rest[i] || fams[i].feasible(cand[c]);
+    for (int i = 0; i < n && all; ++i) all = planAxis(i, cand[c]);
     if (all) {
       T = cand[c];
       break;
@@ -79,14 +251,15 @@ SyncResult planSynchronized(const SyncAxis* axes, int n, Profile* out) {
       for (int k = 0; k < 200 && !all; ++k) {
         t = t * 1.0625 + 1e-9;
         all = true;
-        for (int i = 0; i < n && all; ++i) all = fam[i].plan(t, out[i]);
+        for (int i = 0; i < n && all; ++i) all = planAxis(i, t);
       }
       T = t;
       if (!all) {   // (not seen in the tests) the optimal plans, not synchronised
         T = 0;
         for (int i = 0; i < n; ++i) {
-          out[i] = fam[i].optimal();
-          T = std::max(T, fam[i].minimum());
+          if (rest[i]) planPosition(axes[i].start, axes[i].target, axes[i].vEnd, axes[i].lim, out[i]);
+          else out[i] = fams[i].optimal();
+          T = std::max(T, tMin[i]);
         }
       }
     }
@@ -102,15 +275,14 @@ SyncResult planPhaseSynchronized(const SyncAxis* axes, int n, Profile* out) {
     if (n > 0) holdAll(axes, std::min(n, kMaxSyncAxes), out);
     return res;
   }
-  // validate each axis as the one-axis planner does (a hold plan: cheap)
+  // validate each axis as the one-axis planner does
   Limits path{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
               std::numeric_limits<double>::infinity(), 0};
   double jerkBound = std::numeric_limits<double>::infinity();
   bool anyTrap = false, anyMove = false;
   for (int i = 0; i < n; ++i) {
     const SyncAxis& a = axes[i];
-    Profile tmp;
-    const PlanStatus st = planVelocity(a.start, 0, a.lim, tmp);
+    const PlanStatus st = checkAxis(a);
     PlanStatus st2 = PlanStatus::Ok;
     if (st == PlanStatus::Ok && (!std::isfinite(a.target) || !std::isfinite(a.vEnd))) st2 = PlanStatus::InvalidTarget;
     if (st != PlanStatus::Ok || st2 != PlanStatus::Ok) {

@@ -875,3 +875,163 @@ TEST(SyncPlanProperty, RandomAxes) {
   std::printf("sync cases %d, earliest-time checked %llu, later than the scan %llu\n", kCases,
               (unsigned long long)checkedT, (unsigned long long)later);
 }
+
+// --------------------------------------------------------------- sync planner vs the family-only one
+
+#include "stdlib-motion/core/TrajectoryFamily.h"
+
+namespace {
+
+// The synchronised planner before axes at rest were planned without a TimedFamily
+// (commit 78d8c82): every axis gets a family, candidates are the latest minimum
+// and every family's interval starts after it.  Kept as the reference that the
+// faster planner must reproduce.
+SyncResult familyOnlySync(const SyncAxis* axes, int n, Profile* out) {
+  SyncResult res;
+  std::vector<detail::TimedFamily> fam(n);
+  double tLow = 0;
+  for (int i = 0; i < n; ++i) {
+    const PlanStatus st = fam[i].init(axes[i].start, axes[i].target, axes[i].vEnd, axes[i].lim);
+    if (st != PlanStatus::Ok) {
+      res.status = SyncStatus::InvalidState;   // (the cases below are valid)
+      res.axis = i;
+      return res;
+    }
+    tLow = std::max(tLow, fam[i].minimum());
+  }
+  std::vector<double> cand{tLow};
+  for (int i = 0; i < n; ++i) {
+    double s[detail::TimedFamily::kMaxPoints + 2];
+    const int k = fam[i].starts(s, detail::TimedFamily::kMaxPoints + 2);
+    for (int j = 0; j < k; ++j)
+      if (s[j] > tLow) cand.push_back(s[j]);
+  }
+  std::sort(cand.begin(), cand.end());
+  double T = cand.back();
+  for (size_t c = 0; c < cand.size(); ++c) {
+    bool all = true;
+    for (int i = 0; i < n && all; ++i) all = fam[i].feasible(cand[c]);
+    for (int i = 0; i < n && all; ++i) all = fam[i].plan(cand[c], out[i]);
+    if (all) {
+      T = cand[c];
+      break;
+    }
+    if (c + 1 == cand.size()) {
+      double t = cand.back();
+      for (int k = 0; k < 200 && !all; ++k) {
+        t = t * 1.0625 + 1e-9;
+        all = true;
+        for (int i = 0; i < n && all; ++i) all = fam[i].plan(t, out[i]);
+      }
+      T = t;
+      if (!all) {
+        T = 0;
+        for (int i = 0; i < n; ++i) {
+          out[i] = fam[i].optimal();
+          T = std::max(T, fam[i].minimum());
+        }
+      }
+    }
+  }
+  res.duration = T;
+  return res;
+}
+
+}  // namespace
+
+// 100,000 random sets, most axes at rest or standing still (the closed-form path),
+// the others from random states: the same common duration as the family-only
+// planner (1e-9 s, in fact to rounding), and on every axis the same profile: the
+// same segments (count, jerk), durations to 1e-9 s, segment start states to
+// 1e-9 relative, the same end state.
+TEST(SyncPlanProperty, SameAsFamilyOnlyPlanner) {
+  Rng r;
+  r.g.seed(0x5a3e5a3e);
+  uint64_t failures = 0, restAxes = 0;
+  double maxDT = 0;
+  constexpr int kCases = 100000;
+  for (int k = 0; k < kCases; ++k) {
+    const int n = 1 + int(r.u01() * (r.chance(0.1) ? 16 : 6));
+    SyncAxis ax[16];
+    for (int i = 0; i < n; ++i) {
+      Case c = randomCase(r);
+      const double kind = r.u01();
+      if (kind < 0.7) {   // at rest (jerk-limited or not)
+        c.s.v = 0;
+        c.vEnd = 0;
+        if (r.chance(0.8) || (c.lim.jerk > 0 && std::isfinite(c.lim.jerk))) c.s.a = 0;
+        if (r.chance(0.1)) c.target = c.s.p;   // stays
+        ++restAxes;
+      }
+      ax[i] = {c.s, c.target, c.vEnd, c.lim};
+    }
+    Profile out[16], ref[16];
+    const SyncResult a = planSynchronized(ax, n, out);
+    const SyncResult b = familyOnlySync(ax, n, ref);
+    std::string err;
+    const double dT = std::fabs(a.duration - b.duration);
+    maxDT = std::max(maxDT, dT);
+    if (a.status != b.status) err = "status";
+    else if (dT > 1e-9) err = "duration " + std::to_string(a.duration) + " vs " + std::to_string(b.duration);
+    for (int i = 0; i < n && err.empty(); ++i) {
+      const Profile &p = out[i], &q = ref[i];
+      auto near = [](double x, double y) { return std::fabs(x - y) <= 1e-9 * std::max(1.0, std::fabs(y)); };
+      if (p.segmentCount() != q.segmentCount()) err = "axis " + std::to_string(i) + ": segment count";
+      else if (!near(p.duration(), q.duration())) err = "axis " + std::to_string(i) + ": duration";
+      else if (p.end().p != q.end().p || p.end().v != q.end().v || p.end().a != q.end().a)
+        err = "axis " + std::to_string(i) + ": end state";
+      for (int s = 0; s < p.segmentCount() && err.empty(); ++s) {
+        const auto &x = p.segment(s), &y = q.segment(s);
+        if (x.j != y.j || !near(x.dur, y.dur) || !near(x.t0, y.t0) || !near(x.p, y.p) || !near(x.v, y.v) ||
+            !near(x.a, y.a))
+          err = "axis " + std::to_string(i) + ": segment " + std::to_string(s);
+      }
+    }
+    if (!err.empty() && ++failures <= 10) {
+      std::ostringstream os;
+      os << std::scientific << std::setprecision(17) << "case " << k << ": " << err << " T=" << a.duration
+         << " ref " << b.duration;
+      for (int i = 0; i < n; ++i)
+        os << "\n  axis " << i << ": p=" << ax[i].start.p << " v=" << ax[i].start.v << " a=" << ax[i].start.a
+           << " target=" << ax[i].target << " vEnd=" << ax[i].vEnd << " lim " << ax[i].lim.vel << " "
+           << ax[i].lim.acc << " " << ax[i].lim.dec << " " << ax[i].lim.jerk;
+      ADD_FAILURE() << os.str();
+    }
+  }
+  EXPECT_EQ(failures, 0u);
+  std::printf("sync vs family-only: %d sets, %llu axes at rest, max |dT| %.3g s\n", kCases,
+              (unsigned long long)restAxes, maxDT);
+}
+
+// planPhaseSynchronized validates without planning: the same statuses as the
+// one-axis planner's checks (planVelocity, then target and end velocity).
+TEST(SyncPlan, PhaseSynchronizedValidatesAsTheOneAxisPlanner) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double bad[] = {0, -1, nan, kInf, -kInf};
+  auto expect = [](const SyncAxis& a) {
+    Profile tmp;
+    const PlanStatus st = planVelocity(a.start, 0, a.lim, tmp);
+    if (st == PlanStatus::InvalidLimits) return SyncStatus::InvalidLimits;
+    if (st == PlanStatus::InvalidState) return SyncStatus::InvalidState;
+    if (!std::isfinite(a.target) || !std::isfinite(a.vEnd)) return SyncStatus::InvalidTarget;
+    return SyncStatus::Ok;
+  };
+  int checked = 0;
+  for (int field = 0; field < 9; ++field) {
+    for (double x : bad) {
+      SyncAxis ax[2];
+      for (auto& a : ax) { a.target = 1; a.lim = L(10, 20, 20, 100); }
+      SyncAxis& a = ax[1];
+      double* f[] = {&a.lim.vel, &a.lim.acc, &a.lim.dec, &a.lim.jerk, &a.start.p, &a.start.v, &a.start.a, &a.target, &a.vEnd};
+      *f[field] = x;
+      Profile out[2];
+      const SyncResult r = planPhaseSynchronized(ax, 2, out);
+      const SyncStatus want = expect(a);
+      if (want == SyncStatus::Ok) continue;   // (e.g. jerk 0 or inf; a start v or a of 0)
+      EXPECT_EQ(r.status, want) << field << " " << x;
+      EXPECT_EQ(r.axis, 1);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 30);
+}
