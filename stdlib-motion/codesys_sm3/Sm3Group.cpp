@@ -227,12 +227,10 @@ bool groupVector(const Kernel& k, const AxisGroup& g, int cs, const Kinematic* q
   const CoordSystem sys = static_cast<CoordSystem>(cs);
   double p[kMaxGroupAxes] = {};
   for (size_t i = 0; i < n; ++i) p[i] = q[i].p;
-  if (what == Quantity::Position || sys == CoordSystem::ACS || (!g.kin && sys == CoordSystem::MCS)) {
-    if (what == Quantity::Position) return coordsOf(k, g, sys, p, out);
+  if (what == Quantity::Position) return coordsOf(k, g, sys, p, out);
+  if (sys == CoordSystem::ACS || (!g.kin && sys == CoordSystem::MCS)) {   // the members' own derivatives
     for (size_t i = 0; i < n; ++i) out[i] = what == Quantity::Velocity ? q[i].v : q[i].a;
-    if (sys == CoordSystem::ACS || !g.kin) {
-      if (sys == CoordSystem::ACS || sys == CoordSystem::MCS) return true;
-    }
+    return true;
   }
   constexpr double h = 1e-4;
   double pp[kMaxGroupAxes] = {}, pm[kMaxGroupAxes] = {}, x0[kMaxGroupAxes] = {}, xp[kMaxGroupAxes] = {}, xm[kMaxGroupAxes] = {};

@@ -478,6 +478,7 @@ Error pathError(const path::AppendResult& r) {
     case path::PathStatus::InvalidGeometry: return Error::AgInvalidGeometry;
     case path::PathStatus::BlendingNeedsTransition: return Error::AgBlendingNotSupported;
     case path::PathStatus::TransitionNotAllowed: return Error::AgTransitionNotAllowed;
+    case path::PathStatus::Unreachable: return Error::AgUnreachable;
     default: return Error::AgInvalidMoveInputs;
   }
 }
@@ -507,9 +508,6 @@ Error appendPath(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, uint64_t cy
   path::MoveSpec spec = cmd.path.spec;
   spec.points = cmd.splinePoints;
   const path::AppendResult r = p.append(spec);
-  // Through the kinematics a point out of reach fails the planner's axis check.
-  if (r.status == path::PathStatus::InvalidGeometry && r.geo == path::GeoStatus::BadParameter && pathThroughKinematics(g))
-    return Error::AgUnreachable;
   if (Error e = pathError(r); e != Error::None) return e;
   g.pathCommands.push_back({r.id, &fb});
   takeMembers(k, g, nowNs);

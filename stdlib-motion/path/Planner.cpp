@@ -55,6 +55,7 @@ const char* toString(PathStatus s) {
     case PathStatus::InvalidTransitionParameter: return "invalid transition parameter";
     case PathStatus::InvalidOverride: return "invalid override";
     case PathStatus::NotHeld: return "not interrupted";
+    case PathStatus::Unreachable: return "a point out of the kinematics' reach";
   }
   return "?";
 }
@@ -116,7 +117,7 @@ double Planner::remaining() const {
 
 // ---------------------------------------------------------------- caps and look-ahead
 
-bool Planner::computeCaps(Slot& s) const {
+bool Planner::computeCaps(Slot& s, bool* unreachable) const {
   const Dynamics& d = s.nominal;
   s.vcap = d.vel;
   s.acc = d.acc;
@@ -138,7 +139,10 @@ bool Planner::computeCaps(Slot& s) const {
       if (axes_.map) {
         dq = {};
         ddq = {};
-        if (!axes_.map(pp.pos, pp.d1, pp.d2, dq, ddq)) return false;
+        if (!axes_.map(pp.pos, pp.d1, pp.d2, dq, ddq)) {
+          if (unreachable) *unreachable = true;
+          return false;
+        }
       } else {
         dq = pp.d1;
         ddq = pp.d2;
@@ -474,7 +478,12 @@ AppendResult Planner::append(const MoveSpec& m) {
   for (int i = 0; i < n; ++i) {
     Slot t = proto;
     t.geo = scratchSegs_[i];
-    if (!computeCaps(t)) return r.status = PathStatus::InvalidGeometry, r.geo = GeoStatus::BadParameter, r;
+    bool unreachable = false;
+    if (!computeCaps(t, &unreachable)) {
+      r.status = unreachable ? PathStatus::Unreachable : PathStatus::InvalidGeometry;
+      r.geo = unreachable ? GeoStatus::Ok : GeoStatus::BadParameter;
+      return r;
+    }
   }
   ++nextId_;
   r.id = id;

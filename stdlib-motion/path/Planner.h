@@ -70,6 +70,7 @@ enum class PathStatus : uint8_t {
   TransitionNotAllowed,       // Buffered (or Aborting) with a transition mode other than TMNone
   InvalidTransitionParameter, // negative, NaN or infinite TransitionParameter
   InvalidOverride,            // override factor < 0 or not finite
+  Unreachable,                // AxisLimits::map refused a point of the move (out of the kinematics' reach)
   NotHeld,                    // resume without a hold
 };
 const char* toString(PathStatus s);
@@ -172,7 +173,8 @@ private:
   bool sameLimits(const Slot& a, const Slot& b) const;
   void pushEvent(uint32_t id, EventKind k, double t);
   GeoStatus buildGeometry(const MoveSpec& m, const Vec& start, const Vec* inTangent, int& n);
-  bool computeCaps(Slot& s) const;
+  // False when the segment admits no motion; *unreachable: because the axis map refused a point.
+  bool computeCaps(Slot& s, bool* unreachable = nullptr) const;
   void backwardPass(int from);
   bool replan();
   bool planRun(const Kinematic& st, int& runEnd, Profile& out);
