@@ -108,6 +108,10 @@ llvm::Value* CodeGen::callPou(const CallExpr* e, Symbol* target, llvm::Value* se
           if (a && a->value) assign(tmp, a->value);
           else initAt(tmp, v->init, v);
           args.push_back(tmp.ptr);
+        } else if (a && a->value && p->type && p->type->isReference()) {
+          Address tmp = temporary(p->type, p->name.c_str());   // bound, as by REF=
+          storeAddress(tmp.ptr, p->type, referenceTarget(a->value));
+          args.push_back(load(tmp));
         } else if (a && a->value) {
           args.push_back(emitValue(a->value, p->type));
         } else if (v->init) {
@@ -179,7 +183,9 @@ void CodeGen::callInstance(const CallExpr* e, Symbol* fbSym, llvm::Value* inst) 
     llvm::Value* p = b_.CreateConstInBoundsGEP1_64(i8_, inst, f->offset);
     switch (a.param->var->section) {
       case VarSection::Input:
-        if (a.value) assign(Address{p, f->type}, a.value);
+        if (!a.value) break;
+        if (f->type && f->type->isReference()) storeAddress(p, f->type, referenceTarget(a.value));   // bound, as by REF=
+        else assign(Address{p, f->type}, a.value);
         break;
       case VarSection::InOut:
         if (a.value) b_.CreateAlignedStore(emitAddr(a.value).ptr, p, llvm::MaybeAlign(8));

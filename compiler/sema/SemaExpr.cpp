@@ -1149,6 +1149,8 @@ void SemaImpl::checkArguments(CallExpr* e, const std::vector<Symbol*>& params, c
           .range(v->range).note(p->declRange.begin, "parameter declared here", p->declRange);
   };
   auto checkInput = [&](Symbol* p, Expr* v) {
+    // A REFERENCE TO input is bound to what is passed (as by REF=), not assigned through.
+    if (p->type && p->type->isReference()) return checkReferenceBinding(p->type, v, ctx, "REFERENCE TO input '" + p->name + "'");
     const Type* pt = p->type ? valueType(p->type) : types_.error();
     checkExpr(v, ctx, pt);
     // Arrays passed to POINTER TO parameters (CODESYS libraries do this).
@@ -1474,7 +1476,9 @@ void SemaImpl::checkAssignTarget(Expr* lhs, const Context& ctx, BodyState* body)
   }
   // A function's or method's input is a copy: writing it is legal but the
   // caller never sees the change, which is almost always a mistake.
-  if (decl->var->section == VarSection::Input && ctx.pou && ctx.pou->pou && (ctx.pou->kind == Symbol::Function || ctx.pou->kind == Symbol::Method) &&
+  // (Through a REFERENCE TO input the write reaches the caller's variable.)
+  if (decl->var->section == VarSection::Input && !(decl->type && decl->type->isReference()) && ctx.pou && ctx.pou->pou &&
+      (ctx.pou->kind == Symbol::Function || ctx.pou->kind == Symbol::Method) &&
       ctx.pou->pou->vars->lookupLocal(upperCase(decl->name)) == decl)
     diags_.warning(lhs->range.begin, "assignment to input '" + decl->name + "' of " + (ctx.pou->kind == Symbol::Function ? "function" : "method") +
                                          " '" + ctx.pou->name + "'; the caller does not see the change", "assign-input")

@@ -112,6 +112,7 @@ public:
   bool literalFits(const LiteralExpr* lit, const Type* to) const;
   const Type* commonType(const Type* a, const Type* b, Expr* ea, Expr* eb, SourceLoc opLoc, const char* op);
   bool isLvalue(Expr* e, const Context& ctx, std::string& why, Symbol** declOut = nullptr);
+  void checkReferenceBinding(const Type* refType, Expr* rhs, const Context& ctx, const std::string& what);
   void checkAssignTarget(Expr* lhs, const Context& ctx, BodyState* body);
   bool isUntypedLiteral(const Expr* e) const;
   const Type* valueType(const Type* t) const { return t && t->isReference() ? t->element : t; }

@@ -74,6 +74,30 @@ void SemaImpl::checkCondition(Expr* e, const Context& ctx, const char* what) {
   diags_.error(e->range.begin, std::string(what) + " must be BOOL, not '" + t->name + "'", "type-mismatch").range(e->range);
 }
 
+// `r REF= v`, and a call that passes `v` to a REFERENCE TO input: v must be a
+// variable (not a constant) of the referenced type or derived from it, or 0.
+void SemaImpl::checkReferenceBinding(const Type* refType, Expr* rhs, const Context& ctx, const std::string& what) {
+  const Type* rt = checkExpr(rhs, ctx, refType->element);
+  if (rt->isError()) return;
+  auto* lit = dyn_cast<LiteralExpr>(rhs);
+  if (lit && lit->litKind == LiteralExpr::Int && lit->intValue == 0) return;   // binding to 0 clears
+  std::string why;
+  Symbol* decl = nullptr;
+  if (!isLvalue(rhs, ctx, why, &decl)) {
+    diags_.error(rhs->range.begin, what + " needs a variable on the right, not " + why, "not-assignable").range(rhs->range);
+    return;
+  }
+  if (decl && decl->var && decl->var->isConstant) {
+    diags_.error(rhs->range.begin, "cannot bind a reference to constant '" + decl->name + "'", "assign-constant")
+        .range(rhs->range).note(decl->declRange.begin, "declared CONSTANT here", decl->declRange);
+    return;
+  }
+  Conv c = classify(rt, refType->element);
+  if (!(c == Conv::Exact || (c == Conv::Widening && (rt->kind == TypeKind::FunctionBlock || rt->kind == TypeKind::Struct))))
+    diags_.error(rhs->range.begin, "cannot bind a reference to '" + refType->element->name + "' to a variable of type '" + rt->name + "'",
+                 "type-mismatch").range(rhs->range);
+}
+
 void SemaImpl::checkStmt(Stmt* s, const Context& ctx, BodyState& st) {
   if (!s) return;
   switch (s->kind) {
@@ -93,25 +117,7 @@ void SemaImpl::checkStmt(Stmt* s, const Context& ctx, BodyState& st) {
           checkExpr(a->rhs, ctx);
           return;
         }
-        const Type* rt = checkExpr(a->rhs, ctx, lt->element);
-        if (rt->isError()) return;
-        auto* lit = dyn_cast<LiteralExpr>(a->rhs);
-        if (lit && lit->litKind == LiteralExpr::Int && lit->intValue == 0) return;   // REF= 0 clears
-        std::string why;
-        Symbol* decl = nullptr;
-        if (!isLvalue(a->rhs, ctx, why, &decl)) {
-          diags_.error(a->rhs->range.begin, "'REF=' needs a variable on the right, not " + why, "not-assignable").range(a->rhs->range);
-          return;
-        }
-        if (decl && decl->var && decl->var->isConstant) {
-          diags_.error(a->rhs->range.begin, "cannot bind a reference to constant '" + decl->name + "'", "assign-constant")
-              .range(a->rhs->range).note(decl->declRange.begin, "declared CONSTANT here", decl->declRange);
-          return;
-        }
-        Conv c = classify(rt, lt->element);
-        if (!(c == Conv::Exact || (c == Conv::Widening && (rt->kind == TypeKind::FunctionBlock || rt->kind == TypeKind::Struct))))
-          diags_.error(a->rhs->range.begin, "cannot bind a reference to '" + lt->element->name + "' to a variable of type '" + rt->name + "'",
-                       "type-mismatch").range(a->rhs->range);
+        checkReferenceBinding(lt, a->rhs, ctx, "'REF='");
         return;
       }
       readingLhs_ = true;
