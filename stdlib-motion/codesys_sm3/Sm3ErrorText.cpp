@@ -148,6 +148,9 @@ constexpr uint16_t kSmcNumbers[] = {
     0x7118,  // AgInvalidKinematics: SMC_AG_INVALID_KINEMATICS
     0x7119,  // AgUnreachable: SMC_AG_POSITION_UNREACHABLE
     0x711A,  // AgInvalidCoordSystem: SMC_AG_INVALID_COORD_SYSTEM
+    0x711B,  // AgNothingToSave: SMC_AG_NOTHING_TO_SAVE
+    0x711C,  // AgNotAtContinuePosition: SMC_AG_NOT_AT_CONTINUE_POSITION
+    0x711D,  // AgPcsStillInUse: SMC_AXIS_GROUP_PCS_STILL_IN_USE
 };
 static_assert(sizeof(kSmcNumbers) / sizeof(kSmcNumbers[0]) == static_cast<size_t>(Error::Count_), "one SMC_ERROR per core fault");
 
@@ -400,6 +403,9 @@ const ErrorText kErrors[] = {
   {28952, "SMC_AG_INVALID_KINEMATICS", "the kinematics is not one of the TRAFO.Kin_* blocks, or its parameters are rejected (stc)"},
   {28953, "SMC_AG_POSITION_UNREACHABLE", "the kinematics cannot reach the Cartesian position (outside the workspace) (stc)"},
   {28954, "SMC_AG_INVALID_COORD_SYSTEM", "the coordinate system is out of range or not allowed here, or a dynamic PCS lost its master (stc)"},
+  {28955, "SMC_AG_NOTHING_TO_SAVE", "SMC_GroupSaveContinueData: no MC_GroupHalt / MC_GroupStop of a running move followed in the same cycle (stc)"},
+  {28956, "SMC_AG_NOT_AT_CONTINUE_POSITION", "MC_GroupContinue: a member is not at the continue position (SMC_GroupGetContinuePosition) (stc)"},
+  {28957, "SMC_AXIS_GROUP_PCS_STILL_IN_USE", "SMC_GroupJog restarted with the PCS its running jog uses: command another move (MC_GroupHalt) first"},
 };
 
 const ErrorText* find(uint16_t id) {

@@ -50,6 +50,7 @@ inline void publish(void* instance, const FbOutputs& o) {
   if constexpr (requires { s->InEndVelocity; }) s->InEndVelocity = o.inState;
   if constexpr (requires { s->InGear; }) s->InGear = o.inState;
   if constexpr (requires { s->InSync; }) s->InSync = o.inState;
+  if constexpr (requires { s->InitialPositionReached; }) s->InitialPositionReached = o.inState && o.busy;   // SMC_GroupJog
   if constexpr (requires { s->StartSync; }) s->StartSync = o.startSync;
   if constexpr (requires { s->EndOfProfile; }) s->EndOfProfile = o.endOfProfile;
   if constexpr (requires { s->bCompensating; }) s->bCompensating = o.inState;

@@ -329,6 +329,54 @@ void MC_GroupContinue(sm3::MC_GroupContinue* self) {
   });
 }
 
+// Saved continue data goes into continueData once the save is complete (Done).
+void SMC_GroupSaveContinueData(sm3::SMC_GroupSaveContinueData* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    callGroupSaveContinueData(k, fb, g, self->Execute, c);
+    if (self->Done && self->continueData && savedContinueToken(g)) {
+      self->continueData->__group = g.index() + 1;
+      self->continueData->__token = savedContinueToken(g);
+    }
+  });
+}
+
+void SMC_GroupEnableResumeAfterError(sm3::AXIS_GROUP_REF_SM3* group, sm3::SMC_AXIS_GROUP_CONTINUE_DATA* data, bool enable,
+                                     bool* busy) {
+  CallCtx c = callContext();
+  AxisGroup* g = bindGroup(group, c);
+  const bool on = g && setGroupResumeAfterError(*g, enable);
+  if (busy) *busy = on;
+  if (on && data && savedContinueToken(*g)) {
+    data->__group = g->index() + 1;
+    data->__token = savedContinueToken(*g);
+  }
+}
+
+// The reference axes are read only (bound like masters: they may belong to another task).
+void SMC_GroupJog(sm3::SMC_GroupJog* self) {
+  groupFb(self, [&](Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+    JogInputs in;
+    in.coordSystem = self->CoordSystem;
+    in.pcs = self->CoordSystemPCS;
+    in.velFactor = self->VelFactor;
+    in.accFactor = self->AccFactor;
+    in.jerkFactor = self->JerkFactor;
+    in.abcAsAcs = self->ABC_as_ACS;
+    void* refs[6] = {self->AxisX, self->AxisY, self->AxisZ, self->AxisA, self->AxisB, self->AxisC};
+    bool bad = false;
+    for (int r = 0; r < 6; ++r) {
+      if (!refs[r]) continue;
+      in.ref[r] = bindMaster(static_cast<sm3::AXIS_REF_SM3*>(refs[r]), c);
+      bad = bad || !in.ref[r];
+    }
+    if (bad && self->Execute && !fb.execute) {   // a reference that is not an axis: refused at the edge
+      if (k.beginExecute(fb, true, c)) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+      return;
+    }
+    callGroupJog(k, fb, g, self->Execute, in, c);
+  });
+}
+
 void SMC_GroupTargetPosition(sm3::SMC_GroupTargetPosition* self) {
   self->Stable = false;
   self->KinematicConfig = sm3::CONFIGDATA{};
@@ -635,6 +683,9 @@ void registerSm3GroupNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(MC_SetCoordinateTransform, MC_SetCoordinateTransform)
   STC_SM3_NATIVE(MC_SetDynCoordTransform, MC_SetDynCoordTransform)
   STC_SM3_NATIVE(SMC_GroupConvertPosition, SMC_GroupConvertPosition)
+  STC_SM3_NATIVE(SMC_GroupSaveContinueData, SMC_GroupSaveContinueData)
+  STC_SM3_NATIVE(SMC_GroupEnableResumeAfterError, SMC_GroupEnableResumeAfterError)
+  STC_SM3_NATIVE(SMC_GroupJog, SMC_GroupJog)
 }
 
 }  // namespace stc::motion

@@ -115,6 +115,9 @@ FaultClass faultClass(Error e) {
     case Error::AgNotStandby:
     case Error::AgNotInterruptible:
     case Error::AgNotInterrupted:
+    case Error::AgNothingToSave:
+    case Error::AgNotAtContinuePosition:
+    case Error::AgPcsStillInUse:
       return FaultClass::WrongState;
     case Error::AgInvalidKinematics:
     case Error::AgUnreachable:

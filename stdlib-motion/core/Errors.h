@@ -153,6 +153,9 @@ enum class Error : uint16_t {
   AgInvalidKinematics,    // MC_SetKinTransform: not one of the kinematics, or its parameters are rejected
   AgUnreachable,          // a Cartesian target or path point the kinematics cannot reach
   AgInvalidCoordSystem,   // SMC_COORD_SYSTEM out of range or not allowed here; a dynamic PCS without its master
+  AgNothingToSave,        // SMC_GroupSaveContinueData without a halt / stop of a running move after it in its cycle
+  AgNotAtContinuePosition,   // MC_GroupContinue of saved data while a member is off the continue position
+  AgPcsStillInUse,        // SMC_GroupJog restarted with the PCS of the jog that still tracks
   Count_,   // the number of faults (not a fault)
 };
 

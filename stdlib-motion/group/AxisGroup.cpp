@@ -49,6 +49,7 @@ void callAddAxisToGroup(Kernel& k, FbSlot& fb, AxisGroup& g, Axis& ax, bool exec
   if (g.axes().size() >= kMaxGroupAxes) return k.fail(fb, Error::AgTooManyAxes, c);
   g.addAxis(ax);
   g.planner.reset();   // planned for the old members
+  g.dropSaved();
   done(k, fb, c);
 }
 
@@ -58,6 +59,7 @@ void callRemoveAxisFromGroup(Kernel& k, FbSlot& fb, AxisGroup& g, Axis& ax, bool
   if (g.identOf(ax) < 0) return k.fail(fb, Error::AgAxisNotInGroup, c);
   g.removeAxis(ax);
   g.planner.reset();
+  g.dropSaved();
   done(k, fb, c);
 }
 
@@ -66,6 +68,7 @@ void callUngroupAllAxes(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const
   if (g.enabled()) return k.fail(fb, Error::AgNotDisabled, c);
   g.clearAxes();
   g.planner.reset();
+  g.dropSaved();
   done(k, fb, c);
 }
 
@@ -100,6 +103,7 @@ void callGroupEnable(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Ca
 
 void disableGroup(Kernel& k, AxisGroup& g, const CallCtx& c) {
   abortGroupMotion(k, g, c);
+  g.dropSaved();
   g.setState(GroupState::Disabled);
   g.clearErrors();
 }
@@ -113,6 +117,7 @@ Error enableGroupWith(Kernel& k, AxisGroup& g, const std::vector<Axis*>& axes, b
     g.clearAxes();
     for (Axis* ax : axes) g.addAxis(*ax);
     g.planner.reset();
+    g.dropSaved();
   }
   // An idle internal group lets go of its members: all its commands ended (also in the
   // cycle after its last move, before the step returns it to GroupStandby).

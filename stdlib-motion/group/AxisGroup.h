@@ -98,6 +98,26 @@ public:
   uint32_t interruptToken = 0;
   double continuePos[kMaxGroupAxes] = {};   // where the interrupted motion stands (SMC_GroupGetContinuePosition)
 
+  // SMC_GroupSaveContinueData / SMC_GroupEnableResumeAfterError: a motion that a halt, a stop
+  // or an axis error ended, kept for MC_GroupContinue (docs/motion-groups.md).
+  FbSlot* saver = nullptr;             // SMC_GroupSaveContinueData armed in saverCycle, then its halt's
+  uint64_t saverCycle = 0;
+  bool saverTaken = false;             // a halt / stop of saverCycle took it
+  bool resumeAfterError = false;       // SMC_GroupEnableResumeAfterError's Enable in its last call
+  struct SavedMotion {
+    uint32_t token = 0;                    // 0: nothing saved (tokens count with interruptToken)
+    bool complete = false;                 // at rest: continue data can be written
+    bool path = false;                     // the planner holds the rest of the path ...
+    std::shared_ptr<FbBehaviour> ptp;      // ... or the PTP move (its targets and dynamics)
+    double pos[kMaxGroupAxes] = {};        // where it resumes (members' coordinates)
+  } saved;
+  // Forgets saved continue data (the members' coordinates, the kinematics or the path changed);
+  // a held path is cleared from the planner.
+  void dropSaved();
+
+  // SMC_GroupJog: the PCS (1 or 2) the tracking jog uses; 0 when none runs.
+  int jogPcs = 0;
+
   // Ancillary limits A (SMC_GroupSetAncillaryAxisLimits, or factor x the axis limit G from
   // SMC_SetDynamicLimitFactors): a member's limit for a move is min(A, M x G), M the move's
   // factors; a component of 0 is no ancillary limit.  Cleared at MC_GroupEnable.

@@ -70,7 +70,7 @@ namespace {
 
 // The data of one group command (the FB slot's behaviour).
 struct GroupCommand : FbBehaviour {
-  enum class Kind : uint8_t { Direct, Halt, Stop, Path, Wait } kind = Kind::Direct;
+  enum class Kind : uint8_t { Direct, Halt, Stop, Path, Wait, Jog } kind = Kind::Direct;
   double waitTime = 0;
   std::vector<double> targets;   // Direct: absolute targets, fixed at the first start (continue reuses them)
   Limits anc[kMaxGroupAxes] = {};   // the ancillary axis limits when it was accepted ...
@@ -80,10 +80,20 @@ struct GroupCommand : FbBehaviour {
   PathInputs path;
   std::vector<path::Vec> splinePoints;   // the spec's points refer to these
   CoordSystem space = CoordSystem::ACS;  // Path: the planner space it runs in
+  // Jog: the reference axes of X..C (null: not used), the coordinate each one drives, the
+  // coordinates at the start (the unused ones keep them), the members' limits.
+  JogInputs jog;
+  int jogCoord[6] = {};
+  double jogStart[kMaxGroupAxes] = {};
+  std::vector<Limits> jogLim;
+  uint64_t jogStartCycle = 0;
   void start(Kernel&, FbSlot&, Axis&, int64_t) override {}   // groups start commands themselves
 };
 
 GroupCommand& commandOf(FbSlot& fb) { return behaviourOf<GroupCommand>(fb); }
+
+// MC_GroupContinue of saved data: every member within this of the continue position (units).
+constexpr double kContinueTolerance = 1e-6;
 
 // The slot that stands for the group as the command in control of member i.
 FbSlot& memberSlot(Kernel& k, AxisGroup& g, size_t i) {
@@ -186,11 +196,21 @@ void endCommands(Kernel& k, AxisGroup& g, const CallCtx* c, uint64_t cycle, Erro
   g.pending = g.active = nullptr;
   g.queue.clear();
   g.pathCommands.clear();
-  if (g.planner) {
+  if (g.planner && !g.saved.path) {   // (a path saved for MC_GroupContinue stays held)
     g.planner->clear();
     g.planner->clearEvents();
   }
   g.motion.reset();
+  g.jogPcs = 0;
+}
+
+// SMC_GroupSaveContinueData / SMC_GroupEnableResumeAfterError: the saved motion is at rest at
+// `pos`; the saving FB is Done (its native writes the continue data).
+void completeSave(Kernel& k, AxisGroup& g, const double* pos, uint64_t cycle) {
+  std::copy(pos, pos + g.axes().size(), g.saved.pos);
+  g.saved.complete = true;
+  if (g.saver) k.finish(*g.saver, nullptr, cycle, true, false, Error::None);
+  g.saver = nullptr;
 }
 
 // The group goes to GroupErrorStop: its commands end with the error, the members
@@ -218,7 +238,30 @@ void brakeMembers(Kernel& k, AxisGroup& g, int64_t nowNs) {
   g.lastMotion.reset();
 }
 
+bool pathMode(const AxisGroup& g);
+
+// SMC_GroupEnableResumeAfterError: the running MoveDirect or path (with the moves queued on
+// it) is kept where its set point stands when a member's error stops the group.
+void saveForResume(AxisGroup& g) {
+  if (g.gens.size() != g.axes().size()) return;
+  bool path = pathMode(g) && !g.pathCommands.empty() && !g.pathInterrupted;
+  for (const auto& [id, fb] : g.pathCommands) path = path && commandOf(*fb).kind == GroupCommand::Kind::Path;
+  const bool ptp = !path && g.active && commandOf(*g.active).kind == GroupCommand::Kind::Direct;
+  if (!path && !ptp) return;
+  g.dropSaved();
+  g.saved.token = ++g.interruptToken;
+  if (path) {
+    g.planner->freeze();
+    g.saved.path = true;
+  } else {
+    g.saved.ptp = std::make_shared<GroupCommand>(commandOf(*g.active));
+  }
+  for (size_t i = 0; i < g.axes().size(); ++i) g.saved.pos[i] = g.gens[i]->state.p;
+  g.saved.complete = true;
+}
+
 void groupError(Kernel& k, AxisGroup& g, Error groupErr, Error axisErr, int64_t nowNs, uint64_t cycle) {
+  if (g.resumeAfterError && groupErr == Error::AgAxisError) saveForResume(g);
   endCommands(k, g, nullptr, cycle, groupErr);
   brakeMembers(k, g, nowNs);
   g.ended = false;
@@ -256,7 +299,11 @@ Error startCommand(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, int64_t o
   const std::vector<Kinematic> start = presentStates(k, g, nowNs);
   takeMembers(k, g, nowNs);
   const double rate = cmd.kind == GroupCommand::Kind::Stop ? 1.0 : g.rate;   // MC_GroupStop ignores the override
-  if (cmd.kind == GroupCommand::Kind::Wait) {
+  if (cmd.kind == GroupCommand::Kind::Jog) {
+    // Tracking: stepJog moves the members from their states (no precomputed motion).
+    g.motion.reset();
+    g.lastMotion.reset();
+  } else if (cmd.kind == GroupCommand::Kind::Wait) {
     auto hold = std::make_shared<HoldMotion>();
     hold->at_ = start;
     hold->total = cmd.waitTime;
@@ -487,15 +534,18 @@ Error pathError(const path::AppendResult& r) {
 Error appendPath(Kernel& k, AxisGroup& g, FbSlot& fb, int64_t nowNs, uint64_t cycle) {
   if (g.plannerStale && !pathMode(g)) {
     g.planner.reset();
+    g.dropSaved();
     g.plannerStale = false;
   }
   GroupCommand& cmd = commandOf(fb);
   if (!pathMode(g) && cmd.space != g.pathCs) {   // another space: another planner
     g.planner.reset();
+    g.dropSaved();
     g.pathCs = cmd.space;
   }
   path::Planner& p = plannerOf(k, g);
   if (!pathMode(g)) {
+    g.dropSaved();   // a new path: a held one is not continued
     g.pathStartCycle = cycle;
     const std::vector<Kinematic> s = presentStates(k, g, nowNs);
     double q[kMaxGroupAxes] = {};
@@ -724,6 +774,8 @@ void callGroupBrake(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Gro
   cmd.stop = in;
   fb.axis = nullptr;
   g.targetValid = false;   // unknown until the group stands
+  // SMC_GroupSaveContinueData called before in this cycle: the motion is kept for MC_GroupContinue.
+  const bool save = g.saver && !g.saverTaken && g.saverCycle == c.cycle;
   if (pathMode(g)) {
     // On the path: the planner brakes along it; every queued move (and PTP behind it) ends.
     for (FbSlot* q : g.queue) k.finish(*q, &c, c.cycle, false, true, Error::None);
@@ -733,11 +785,38 @@ void callGroupBrake(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const Gro
     g.interrupter = nullptr;
     g.pathInterrupted = false;
     advanceToCall(g, c);
+    bool moves = !g.pathCommands.empty();
+    for (const auto& [id, p] : g.pathCommands) moves = moves && commandOf(*p).kind == GroupCommand::Kind::Path;
+    if (save && moves) {
+      // The moves end (CommandAborted) but the planner holds the rest of the path: a feed hold
+      // with the halt's dynamics, this FB Done at rest (stepPath), then the save completes.
+      for (auto& [id, p] : g.pathCommands) {
+        p->out.active = false;
+        k.finish(*p, &c, c.cycle, false, true, Error::None);
+      }
+      g.pathCommands.clear();
+      g.dropSaved();
+      g.saverTaken = true;
+      g.saved.token = ++g.interruptToken;
+      g.saved.path = true;
+      g.planner->interrupt(in.deceleration * in.accFactor, in.jerk * in.jerkFactor);
+      g.interrupter = &fb;
+      g.pathInterrupted = true;
+      g.setState(kind == GroupCommand::Kind::Stop ? GroupState::Stopping : GroupState::Moving);
+      return accepted(g, fb);
+    }
     const uint32_t id = g.planner->halt(in.deceleration * in.accFactor, in.jerk * in.jerkFactor);
     drainPathEvents(k, g, &c, c.cycle);
     g.pathCommands.push_back({id, &fb});
     g.setState(kind == GroupCommand::Kind::Stop ? GroupState::Stopping : GroupState::Moving);
     return accepted(g, fb);
+  }
+  if (save && g.active && commandOf(*g.active).kind == GroupCommand::Kind::Direct) {
+    // PTP: the move's targets and dynamics are kept; the save completes when this halt is at rest.
+    g.dropSaved();
+    g.saverTaken = true;
+    g.saved.token = ++g.interruptToken;
+    g.saved.ptp = std::make_shared<GroupCommand>(commandOf(*g.active));
   }
   endCommands(k, g, &c, c.cycle, Error::None);
   g.pending = &fb;
@@ -817,6 +896,16 @@ void stepPath(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64
     g.interrupter = nullptr;
     for (size_t i = 0; i < g.axes().size() && i < g.gens.size(); ++i) g.continuePos[i] = g.gens[i]->state.p;
     k.finish(*it, nullptr, cycle, true, false, Error::None);
+    const GroupCommand::Kind kind = commandOf(*it).kind;
+    if (kind == GroupCommand::Kind::Halt || kind == GroupCommand::Kind::Stop) {
+      // A halt / stop that saved the path: it stands like after any halt (GroupStandby in
+      // the next step; a stop holds GroupStopping while its Execute is TRUE).
+      g.pathInterrupted = false;
+      completeSave(k, g, g.continuePos, cycle);
+      g.ended = true;
+      if (kind == GroupCommand::Kind::Stop && !it->execute) g.setState(GroupState::Moving);
+      return;
+    }
     for (auto& [id, fb] : g.pathCommands)
       if (fb->out.active) {
         fb->out.active = false;
@@ -832,9 +921,15 @@ void stepPath(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64
 
 namespace {
 bool stepPtp(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle);
+void stepJog(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64_t cycle);
 }  // namespace
 
 void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64_t cycle) {
+  // SMC_GroupSaveContinueData whose cycle passed without a halt or stop taking it.
+  if (g.saver && !g.saverTaken && g.saverCycle <= cycle) {
+    k.finish(*g.saver, nullptr, cycle, false, false, Error::AgNothingToSave);
+    g.saver = nullptr;
+  }
   if (!g.enabled() || g.state() == GroupState::ErrorStop) return;
   // The last command ended in the previous step: the group stands (one cycle after the
   // last position change, as CODESYS).
@@ -851,6 +946,7 @@ void groupBeforeStep(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs,
       return groupError(k, g, e, Error::None, nowNs, cycle);
     }
   }
+  if (g.active && commandOf(*g.active).kind == GroupCommand::Kind::Jog) return stepJog(k, g, nowNs, intervalNs, cycle);
   if (pathMode(g)) return stepPath(k, g, nowNs, intervalNs, cycle);
   // A successor of a dwell starts at the dwell's exact end, maybe between cycles: it is
   // sampled in this step too (at most a few hand-overs per step).
@@ -895,6 +991,11 @@ bool stepPtp(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
   }
   FbSlot* done = g.active;
   const bool stop = commandOf(*done).kind == GroupCommand::Kind::Stop;
+  if ((stop || commandOf(*done).kind == GroupCommand::Kind::Halt) && g.saved.token && !g.saved.complete && g.saved.ptp) {
+    double pos[kMaxGroupAxes];
+    for (size_t i = 0; i < g.axes().size(); ++i) pos[i] = q[i].p;
+    completeSave(k, g, pos, cycle);
+  }
   g.active = nullptr;
   g.motion.reset();
   done->out.active = false;
@@ -913,6 +1014,143 @@ bool stepPtp(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
 }
 
 }  // namespace
+
+namespace {
+
+// SMC_GroupJog in one step: the reference axes' set positions (of their last step) are the
+// coordinates in the jog's system; each member is replanned from its state towards the joint
+// target at the joint velocity the references give (time-optimal under its limits) and
+// advanced by one cycle.  Exact tracking (one cycle behind) once caught up.
+void stepJog(Kernel& k, AxisGroup& g, int64_t nowNs, int64_t intervalNs, uint64_t cycle) {
+  FbSlot& fb = *g.active;
+  GroupCommand& cmd = commandOf(fb);
+  if (fb.lastCallCycle != cycle) return groupError(k, g, Error::FbWasntCalledDuringMotion, Error::None, nowNs, cycle);
+  const CoordSystem cs = static_cast<CoordSystem>(cmd.jog.coordSystem);
+  double x[kMaxGroupAxes], xp[kMaxGroupAxes], xm[kMaxGroupAxes];
+  std::copy(cmd.jogStart, cmd.jogStart + kMaxGroupAxes, x);
+  constexpr double h = 1e-4;   // seconds: joint velocities by central differences
+  std::copy(x, x + kMaxGroupAxes, xp);
+  std::copy(x, x + kMaxGroupAxes, xm);
+  for (int r = 0; r < 6; ++r) {
+    const Axis* ref = cmd.jog.ref[r];
+    if (!ref) continue;
+    const int i = cmd.jogCoord[r];
+    x[i] = ref->set().p;
+    xp[i] = x[i] + h * ref->set().v;
+    xm[i] = x[i] - h * ref->set().v;
+  }
+  const size_t n = g.axes().size();
+  double near[kMaxGroupAxes] = {}, q[kMaxGroupAxes] = {}, qp[kMaxGroupAxes] = {}, qm[kMaxGroupAxes] = {};
+  for (size_t i = 0; i < n; ++i) near[i] = g.gens[i]->state.p;
+  const KinConfigData cfg = g.kin ? g.kin->configOf(near) : KinConfigData{};
+  if (!jointsOf(k, g, cs, x, cfg, near, q) || !jointsOf(k, g, cs, xp, cfg, q, qp) || !jointsOf(k, g, cs, xm, cfg, q, qm))
+    return groupError(k, g, Error::AgUnreachable, Error::None, nowNs, cycle);
+  const double dt = cycle == cmd.jogStartCycle ? 0.0 : static_cast<double>(intervalNs) * 1e-9;
+  bool reached = true;
+  for (size_t i = 0; i < n; ++i) {
+    // In the frame that moves with the target (at its joint velocity vf, capped by the member's
+    // limit): the error comes to rest time-optimally, with the velocity the limit leaves.
+    const Limits& lim = cmd.jogLim[i];
+    const Kinematic s = g.gens[i]->state;
+    const double vf = std::clamp((qp[i] - qm[i]) / (2 * h), -lim.vel, lim.vel);
+    const Limits rel{std::max(lim.vel - std::fabs(vf), 1e-9 * lim.vel), lim.acc, lim.dec, lim.jerk};
+    Profile p;
+    if (planPosition(Kinematic{s.p - q[i], s.v - vf, s.a}, 0, 0, rel, p) != PlanStatus::Ok) {
+      reached = false;
+      continue;   // (not within the model: the member keeps its state)
+    }
+    const Kinematic e = p.at(dt);
+    // At the reference pose after this step (to rounding): the error has come to rest.
+    reached = reached && std::fabs(e.p) <= 1e-9 * std::max(1.0, std::fabs(q[i])) && std::fabs(e.v) <= 1e-9 * std::max(1.0, lim.vel);
+    g.gens[i]->state = Kinematic{q[i] + vf * dt + e.p, vf + e.v, e.a};
+    g.gens[i]->tSet = g.axes()[i]->movement().t(nowNs);
+  }
+  if (reached && !fb.out.inState) {   // InitialPositionReached (stays while the jog tracks)
+    fb.out.inState = true;
+    fb.sync();
+  }
+}
+
+}  // namespace
+
+void callGroupJog(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const JogInputs& in, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();   // Execute falling: the jog goes on tracking
+  fb.out.commandAccepted = false;
+  auto factor = [](double f) { return std::isfinite(f) && f > 0 && f <= 1; };
+  if (!factor(in.velFactor) || !factor(in.accFactor) || !factor(in.jerkFactor)) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  if (!validCoordSystem(in.coordSystem) || in.coordSystem == static_cast<int>(CoordSystem::TCS) ||
+      (in.pcs != static_cast<int>(CoordSystem::PCS1) && in.pcs != static_cast<int>(CoordSystem::PCS2)))
+    return k.fail(fb, Error::AgInvalidCoordSystem, c);
+  if (in.abcAsAcs) return k.fail(fb, Error::AgInvalidKinematics, c);   // needs Kin_Coupled, not offered
+  if (Error e = motionRefusal(k, g); e != Error::None) {
+    if (e == Error::AgSingleAxisActive) groupError(k, g, e, Error::None, c.nowNs, c.cycle);
+    return k.fail(fb, e, c);
+  }
+  const CoordSystem cs = static_cast<CoordSystem>(in.coordSystem);
+  // The coordinate each reference axis drives: X, Y, Z; A, B, C the orientation when the
+  // kinematics controls it, else the additional axes (coordinates 6..8 in a Cartesian system).
+  GroupCommand tmp;
+  bool any = false;
+  const int count = coordCount(g, cs);
+  for (int r = 0; r < 6; ++r) {
+    const Axis* ref = in.ref[r];
+    if (!ref) continue;
+    any = true;
+    if (g.identOf(*ref) >= 0) return k.fail(fb, Error::AgInvalidMoveInputs, c);   // a member cannot lead the group
+    int i = r;
+    if (cartesian(g, cs) && r >= 3 && !(g.kin->controlled() & (1u << r))) i = 6 + (r - 3);
+    if (cartesian(g, cs) && r < 3 && !(g.kin->controlled() & (1u << r))) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+    if (i >= count) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+    tmp.jogCoord[r] = i;
+  }
+  if (!any) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  // Restarting with the PCS of the jog that still tracks needs another move first (manual).
+  if (g.jogPcs == in.pcs && g.active && commandOf(*g.active).kind == GroupCommand::Kind::Jog)
+    return k.fail(fb, Error::AgPcsStillInUse, c);
+  if (pathMode(g)) return k.fail(fb, Error::AgModeChangeWhileMoving, c);
+  std::vector<Limits> lim;
+  if (!memberLimits(g, in.velFactor, in.accFactor, in.jerkFactor, lim, g.anc)) return k.fail(fb, Error::AgAxisLimitsMissing, c);
+  const std::vector<Kinematic> s = presentStates(k, g, c.nowNs);
+  double q[kMaxGroupAxes] = {};
+  for (size_t i = 0; i < s.size(); ++i) q[i] = s[i].p;
+  if (!coordsOf(k, g, cs, q, tmp.jogStart)) return k.fail(fb, Error::AgInvalidCoordSystem, c);
+  GroupCommand& cmd = commandOf(fb);
+  cmd.kind = GroupCommand::Kind::Jog;
+  cmd.jog = in;
+  std::copy(tmp.jogCoord, tmp.jogCoord + 6, cmd.jogCoord);
+  std::copy(tmp.jogStart, tmp.jogStart + kMaxGroupAxes, cmd.jogStart);
+  cmd.jogLim = std::move(lim);
+  cmd.jogStartCycle = c.cycle;
+  fb.axis = nullptr;
+  fb.out.inState = false;
+  // Like an aborting move: what runs or waits ends now, the jog takes over in this cycle's step.
+  endCommands(k, g, &c, c.cycle, Error::None);
+  g.pending = &fb;
+  g.jogPcs = in.pcs;
+  g.targetValid = false;   // it follows the references: no fixed target
+  accepted(g, fb);
+}
+
+void callGroupSaveContinueData(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c) {
+  if (!k.beginExecute(fb, execute, c)) return fb.sync();
+  fb.axis = nullptr;
+  if (!g.enabled()) return k.fail(fb, Error::AgNotEnabled, c);
+  if (g.state() == GroupState::ErrorStop) return k.fail(fb, Error::AgInErrorStop, c);
+  // One save at a time per group: an armed one that another instance replaces ends aborted.
+  if (g.saver && g.saver != &fb) k.finish(*g.saver, &c, c.cycle, false, true, Error::None);
+  g.saver = &fb;
+  g.saverCycle = c.cycle;
+  g.saverTaken = false;
+  fb.out.busy = true;
+  fb.sync();
+}
+
+bool setGroupResumeAfterError(AxisGroup& g, bool enable) {
+  g.resumeAfterError = enable && g.enabled();
+  return g.resumeAfterError;
+}
+
+uint32_t savedContinueToken(const AxisGroup& g) { return g.saved.complete ? g.saved.token : 0; }
 
 void abortGroupMotion(Kernel& k, AxisGroup& g, const CallCtx& c) {
   endCommands(k, g, &c, c.cycle, Error::None);
@@ -949,6 +1187,7 @@ void callGroupSetPosition(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, con
     ax.sample(c.nowNs);
     ax.shiftPosition(relative ? position[i] : position[i] - ax.reportPosition(ax.set().p));
   }
+  g.dropSaved();                        // the coordinates changed under it
   if (g.planner) g.planner->clear();   // it starts again from the members' positions
   g.lastMotion.reset();
   k.finish(fb, &c, c.cycle, true, false, Error::None);
@@ -1025,11 +1264,42 @@ void callGroupInterrupt(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, uint3
   fb.sync();
 }
 
+namespace {
+// MC_GroupContinue of a motion saved at a halt, a stop or an error: the group must stand at the
+// continue position; this FB stands for the ended moves (Busy, Done at the end of the rest).
+void continueSaved(Kernel& k, FbSlot& fb, AxisGroup& g, const CallCtx& c) {
+  if (Error e = motionRefusal(k, g); e != Error::None) return k.fail(fb, e, c);
+  if (g.active || g.pending || !g.queue.empty() || pathMode(g)) return k.fail(fb, Error::AgNotStandby, c);
+  for (size_t i = 0; i < g.axes().size(); ++i)
+    if (!(std::fabs(g.axes()[i]->set().p - g.saved.pos[i]) <= kContinueTolerance)) return k.fail(fb, Error::AgNotAtContinuePosition, c);
+  if (g.saved.path) {
+    auto cmd = std::make_unique<GroupCommand>();
+    cmd->kind = GroupCommand::Kind::Path;
+    cmd->space = g.pathCs;
+    fb.behaviour = std::move(cmd);
+    takeMembers(k, g, c.nowNs);
+    g.planner->resume();
+    g.pathStartCycle = c.cycle;   // resumes at this cycle's time (the step samples t = 0)
+    g.pathCommands.push_back({g.planner->lastOwner(), &fb});
+    g.lastMotion.reset();
+    g.ended = false;
+    g.setState(GroupState::Moving);
+    fb.out.active = true;
+  } else {
+    fb.behaviour = std::make_unique<GroupCommand>(static_cast<const GroupCommand&>(*g.saved.ptp));
+    g.pending = &fb;
+  }
+  g.saved = AxisGroup::SavedMotion{};   // taken (the planner keeps the path it runs now)
+  accepted(g, fb);
+}
+}  // namespace
+
 void callGroupContinue(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, uint32_t token, const CallCtx& c) {
   if (!k.beginExecute(fb, execute, c)) return fb.sync();
   fb.axis = nullptr;
   if (g.state() == GroupState::Stopping) return k.finish(fb, &c, c.cycle, false, true, Error::None);
   if (!g.enabled() || g.state() != GroupState::Standby) return k.fail(fb, Error::AgNotStandby, c);
+  if (token != 0 && token == g.saved.token && g.saved.complete) return continueSaved(k, fb, g, c);
   const bool held = g.pathInterrupted || g.interrupted;
   if (!held || g.interrupter || token != g.interruptToken) return k.fail(fb, Error::AgNotInterrupted, c);
   if (g.pathInterrupted) {
@@ -1091,6 +1361,10 @@ void callSetAncillaryLimits(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, b
 }
 
 bool continuePosition(const AxisGroup& g, uint32_t token, double* position) {
+  if (g.enabled() && token != 0 && token == g.saved.token && g.saved.complete) {
+    std::copy(g.saved.pos, g.saved.pos + kMaxGroupAxes, position);
+    return true;
+  }
   if (!g.enabled() || g.interrupter || !(g.interrupted || g.pathInterrupted) || token != g.interruptToken) return false;
   std::copy(g.continuePos, g.continuePos + kMaxGroupAxes, position);
   return true;
@@ -1116,6 +1390,7 @@ void callSetKinTransform(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, std:
   if (Error e = configRefusal(g); e != Error::None) return k.fail(fb, e, c);
   g.kin = std::move(kin);
   g.planner.reset();   // its space and coordinates change
+  g.dropSaved();
   g.pathCs = CoordSystem::ACS;
   g.targetValid = false;
   k.finish(fb, &c, c.cycle, true, false, Error::None);
@@ -1149,9 +1424,22 @@ void callSetCoordinateTransform(Kernel& k, FbSlot& fb, AxisGroup& g, bool execut
     p.master = master ? master->index() : UINT32_MAX;
   }
   g.planner.reset();
+  g.dropSaved();
   g.pathCs = CoordSystem::ACS;
   g.targetValid = false;
   k.finish(fb, &c, c.cycle, true, false, Error::None);
+}
+
+}  // namespace stc::motion
+
+namespace stc::motion {
+
+void AxisGroup::dropSaved() {
+  if (saved.path && planner && pathCommands.empty() && !planner->sample().moving) {
+    planner->clear();
+    planner->clearEvents();
+  }
+  saved = SavedMotion{};
 }
 
 }  // namespace stc::motion

@@ -69,6 +69,28 @@ struct PathInputs {
 };
 void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const PathInputs& in, const CallCtx& c);
 
+// SMC_GroupJog: the group tracks the set positions of reference axes (X, Y, Z, A, B, C; null:
+// not used, that coordinate keeps its value) in coordSystem.  From the rising edge it moves
+// there (InitialPositionReached: FbOutputs::inState), then follows them one cycle behind,
+// each member under its limits x the factors, until another command takes the group.
+struct JogInputs {
+  int coordSystem = 1;         // SMC_COORD_SYSTEM (not TCS)
+  int pcs = 3;                 // CoordSystemPCS: PCS_1 or PCS_2 (reserved while the jog tracks)
+  double velFactor = 1, accFactor = 1, jerkFactor = 1;
+  const Axis* ref[6] = {};
+  bool abcAsAcs = false;       // needs Kin_Coupled kinematics: refused
+};
+void callGroupJog(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const JogInputs& in, const CallCtx& c);
+
+// SMC_GroupSaveContinueData: armed in its call; a MC_GroupHalt / MC_GroupStop later in the same
+// cycle keeps the running motion for MC_GroupContinue; Done when that halt is at rest.
+void callGroupSaveContinueData(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const CallCtx& c);
+// SMC_GroupEnableResumeAfterError (called cyclically): while enable is TRUE, a motion that a
+// member's error stops is kept where its set point stood.  Returns Busy.
+bool setGroupResumeAfterError(AxisGroup& g, bool enable);
+// The token of saved continue data that can be written out now (0: none).
+uint32_t savedContinueToken(const AxisGroup& g);
+
 // SMC_GroupWait: a dwell of waitTime seconds queued like a buffered move; the next
 // buffered command starts exactly when it expires (also between cycles).
 void callGroupWait(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, double waitTime, const CallCtx& c);

@@ -787,6 +787,18 @@ PathStatus Planner::resume() {
   return PathStatus::Ok;
 }
 
+void Planner::freeze() {
+  if (count_ == 0) return;
+  if (planned_) sHead_ = std::clamp(prof_.at(tau_).p - at(0).planStart, 0.0, at(0).geo.length());
+  planned_ = false;
+  held_ = true;
+  holding_ = false;
+  sample_.v = sample_.a = 0;
+  sample_.vel = sample_.acc = Vec{};
+  sample_.moving = false;
+  sample_.held = true;
+}
+
 PathStatus Planner::setOverride(double f) {
   if (!std::isfinite(f) || f < 0 || f > 1e3) return PathStatus::InvalidOverride;
   override_ = f;

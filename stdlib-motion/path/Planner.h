@@ -133,6 +133,11 @@ public:
   // Feed hold: stop along the path (deceleration / jerk as halt), keep the queue.
   PathStatus interrupt(double dec, double jerk);
   PathStatus resume();
+  // Holds the path where the last sample stands, at once (the caller stops the axes some
+  // other way, e.g. an error stop): the queue stays, resume() starts there from rest.
+  void freeze();
+  // The move id of the last queued segment (0 when the queue is empty).
+  uint32_t lastOwner() const { return count_ > 0 ? at(count_ - 1).owner : 0; }
   // Time scaling of the plan: path velocity x f, acceleration x f^2; 0 holds.
   PathStatus setOverride(double f);
   // Drops everything at once (error stop by the caller: the path stops dead).
