@@ -9,6 +9,8 @@
 // Third figure (issue 15): N axis groups of 3 axes, each running a blended square path
 // (4 MC_MoveLinearRelative, BlendingLow + TMCornerDistance) re-queued whenever it ends, every FB
 // called from ST in every cycle.  Target: < 100 us per cycle for 100 groups.
+// Also with kinematics: N SCARA groups (TRAFO.Kin_Scara2_Z, joints in degrees) running the same
+// blended squares in MCS: every step maps the path point through the inverse kinematics.
 // Fourth figure: N SMC_TRAFO_Scara2 inverse transformations per cycle from ST (the tool point
 // on a circle), the kinematics face's cost through the path users take.
 // Each figure twice: the programs above never read a field of an axis variable,
@@ -66,7 +68,7 @@ std::string camProgram(int n, bool reads) {
   return s.str();
 }
 
-std::string groupProgram(int n) {
+std::string groupProgram(int n, bool scara) {
   std::ostringstream s;
   s << "VAR_GLOBAL\n  Axes : ARRAY[1.." << 3 * n
     << "] OF AXIS_REF_SM3 := [" << 3 * n << "((fMaxVelocity := 500, fMaxAcceleration := 5000))];\n  Groups : ARRAY[1.." << n
@@ -74,18 +76,27 @@ std::string groupProgram(int n) {
     << "PROGRAM MAIN\nVAR\n  add : ARRAY[1.." << 3 * n << "] OF MC_AddAxisToGroup;\n  power : ARRAY[1.." << n
     << "] OF SMC_GroupPower;\n  enable : ARRAY[1.." << n << "] OF MC_GroupEnable;\n  mv : ARRAY[1.." << n
     << ", 1..4] OF MC_MoveLinearRelative;\n  run : ARRAY[1.." << n << "] OF BOOL;\n  d : ARRAY[1..4] OF SMC_POS_REF;\n"
-    << "  blend : SMC_TRANSITION_PARAMETERS := [2, 0, 0, 0, 0];\n  g, j : DINT;\nEND_VAR\n"
+    << "  blend : SMC_TRANSITION_PARAMETERS := [2, 0, 0, 0, 0];\n  g, j : DINT;\n";
+  // SCARA: arms 200 / 150, every group set to joints (0, 90, 0): the tool at (200, 150, 0).
+  if (scara)
+    s << "  kin : TRAFO.Kin_Scara2_Z := (dArmLength1 := 200, dArmLength2 := 150);\n  setKin : ARRAY[1.." << n
+      << "] OF MC_SetKinTransform;\n  setPos : ARRAY[1.." << n << "] OF MC_GroupSetPosition;\n  p0 : SMC_POS_REF;\n";
+  s << "END_VAR\n"
+    << (scara ? "p0.a.a1 := 90;\n" : "")
     << "d[1].c.X := 20; d[1].c.Z := 5; d[2].c.Y := 20; d[2].c.Z := -5; d[3].c.X := -20; d[3].c.Z := 5; d[4].c.Y := -20; d[4].c.Z := -5;\n"
     << "FOR g := 1 TO " << n << " DO\n"
     << "  FOR j := 1 TO 3 DO add[(g - 1) * 3 + j](AxisGroup := Groups[g], Axis := Axes[(g - 1) * 3 + j], Execute := TRUE); END_FOR\n"
     << "  power[g](AxisGroup := Groups[g], Enable := TRUE, bRegulatorOn := TRUE, bDriveStart := TRUE);\n"
-    << "  enable[g](AxisGroup := Groups[g], Execute := power[g].Status);\n"
-    << "  IF mv[g, 4].Done THEN run[g] := FALSE; ELSIF enable[g].Done AND NOT mv[g, 1].Busy AND NOT mv[g, 4].Busy THEN run[g] := TRUE; END_IF\n"
+    << (scara ? "  setKin[g](AxisGroup := Groups[g], Execute := TRUE, KinTransform := kin);\n" : "")
+    << "  enable[g](AxisGroup := Groups[g], Execute := power[g].Status" << (scara ? " AND setKin[g].Done" : "") << ");\n"
+    << (scara ? "  setPos[g](AxisGroup := Groups[g], Execute := enable[g].Done, Position := p0);\n" : "")
+    << "  IF mv[g, 4].Done THEN run[g] := FALSE; ELSIF " << (scara ? "setPos[g].Done" : "enable[g].Done") << " AND NOT mv[g, 1].Busy AND NOT mv[g, 4].Busy THEN run[g] := TRUE; END_IF\n"
     << "  mv[g, 1](AxisGroup := Groups[g], Execute := run[g], Distance := d[1], Velocity := 100, Acceleration := 1000, Deceleration := 1000,\n"
-    << "           BufferMode := MC_BUFFER_MODE.Buffered);\n"
+    << "           BufferMode := MC_BUFFER_MODE.Buffered" << (scara ? ", CoordSystem := SMC_COORD_SYSTEM.MCS" : "") << ");\n"
     << "  FOR j := 2 TO 4 DO\n"
     << "    mv[g, j](AxisGroup := Groups[g], Execute := run[g], Distance := d[j], Velocity := 100, Acceleration := 1000, Deceleration := 1000,\n"
-    << "             BufferMode := MC_BUFFER_MODE.BlendingLow, TransitionMode := MC_TRANSITION_MODE.TMCornerDistance, TransitionParameter := blend);\n"
+    << "             BufferMode := MC_BUFFER_MODE.BlendingLow, TransitionMode := MC_TRANSITION_MODE.TMCornerDistance, TransitionParameter := blend"
+    << (scara ? ", CoordSystem := SMC_COORD_SYSTEM.MCS" : "") << ");\n"
     << "  END_FOR\nEND_FOR\nEND_PROGRAM\n";
   return s.str();
 }
@@ -101,10 +112,10 @@ std::string trafoProgram(int n) {
 }
 
 // Seconds of wall time per cycle over `cycles` cycles (after a warm-up).
-double perCycle(int n, uint64_t cycles, bool cams, bool reads, bool groups = false, bool trafo = false) {
-  const std::string file = "/tmp/stc_st_motion_bench_" + std::string(trafo ? "trafo_" : groups ? "group_" : cams ? "cam_" : "") +
+double perCycle(int n, uint64_t cycles, bool cams, bool reads, bool groups = false, bool trafo = false, bool scara = false) {
+  const std::string file = "/tmp/stc_st_motion_bench_" + std::string(trafo ? "trafo_" : scara ? "scara_" : groups ? "group_" : cams ? "cam_" : "") +
                            (reads ? "reads_" : "") + std::to_string(n) + ".st";
-  std::ofstream(file) << (trafo ? trafoProgram(n) : groups ? groupProgram(n) : cams ? camProgram(n, reads) : program(n, reads));
+  std::ofstream(file) << (trafo ? trafoProgram(n) : groups ? groupProgram(n, scara) : cams ? camProgram(n, reads) : program(n, reads));
   Compilation comp;
   comp.addPath(file);
   CompileOptions co;
@@ -140,7 +151,7 @@ double perCycle(int n, uint64_t cycles, bool cams, bool reads, bool groups = fal
 
 int main(int argc, char** argv) {
   const uint64_t cycles = argc > 1 ? std::stoull(argv[1]) : 5000;
-  const std::string only = argc > 2 ? argv[2] : "";   // "axes", "cams", "groups" or "trafo": one scenario
+  const std::string only = argc > 2 ? argv[2] : "";   // "axes", "cams", "groups", "scara" or "trafo": one scenario
   for (bool reads : {false, true})
     for (int n : {1, 100, 1000}) {
       if ((!only.empty() && only != "axes") || (reads && n != 1000)) continue;
@@ -163,6 +174,13 @@ int main(int argc, char** argv) {
     for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, false, false, true));
     std::printf("%5d groups of 3 axes (blended MC_MoveLinearRelative squares from ST): %8.2f us per cycle (best of 3, %llu cycles)\n", n,
                 best * 1e6, static_cast<unsigned long long>(cycles));
+  }
+  for (int n : {1, 100}) {
+    if (!only.empty() && only != "scara") continue;
+    double best = 1e9;
+    for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, false, false, true, false, true));
+    std::printf("%5d SCARA groups (Kin_Scara2_Z, the same squares in MCS through the inverse kinematics): %8.2f us per cycle (best of 3, %llu cycles)\n",
+                n, best * 1e6, static_cast<unsigned long long>(cycles));
   }
   if (only.empty() || only == "trafo") {
     const int n = 1000;

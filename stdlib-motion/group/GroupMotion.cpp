@@ -105,6 +105,17 @@ FbSlot& memberSlot(Kernel& k, AxisGroup& g, size_t i) {
 // The running PTP motion's own time (override: time scaling from rateNs on).
 double groupTime(const AxisGroup& g, int64_t nowNs) { return g.rateTau + g.motionRate * static_cast<double>(nowNs - g.rateNs) * 1e-9; }
 
+// The members' states of motion m at its own time t, in real time: the override's time
+// scaling (rate f) makes velocities x f and accelerations x f^2.
+void sampleScaled(const AxisGroup& g, const GroupMotion& m, double t, Kinematic* q) {
+  m.at(t, q);
+  const double f = g.motionRate;
+  for (size_t i = 0; i < g.axes().size(); ++i) {
+    q[i].v *= f;
+    q[i].a *= f * f;
+  }
+}
+
 bool controlsMembers(Kernel& k, AxisGroup& g) {
   if (g.gens.size() != g.axes().size()) return false;
   for (size_t i = 0; i < g.axes().size(); ++i)
@@ -117,7 +128,7 @@ std::vector<Kinematic> presentStates(Kernel& k, AxisGroup& g, int64_t nowNs) {
   std::vector<Kinematic> s(g.axes().size());
   if (g.lastMotion && controlsMembers(k, g)) {
     Kinematic q[kMaxGroupAxes];
-    g.lastMotion->at(groupTime(g, nowNs), q);
+    sampleScaled(g, *g.lastMotion, groupTime(g, nowNs), q);
     std::copy(q, q + s.size(), s.begin());
   } else if (controlsMembers(k, g)) {
     for (size_t i = 0; i < s.size(); ++i) s[i] = g.gens[i]->state;
@@ -966,7 +977,7 @@ bool stepPtp(Kernel& k, AxisGroup& g, int64_t nowNs, uint64_t cycle) {
   }
   Kinematic q[kMaxGroupAxes];
   const double t = groupTime(g, nowNs);
-  g.motion->at(t, q);
+  sampleScaled(g, *g.motion, t, q);
   for (size_t i = 0; i < g.axes().size() && i < g.gens.size(); ++i) {
     g.gens[i]->state = q[i];
     g.gens[i]->tSet = g.axes()[i]->movement().t(nowNs);
