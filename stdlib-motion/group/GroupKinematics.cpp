@@ -292,9 +292,15 @@ bool frameInWorld(const Kernel& k, const AxisGroup& g, CoordSystem cs, Frame& ou
 
 bool convertCoords(const Kernel& k, const AxisGroup& g, CoordSystem from, CoordSystem to, const double* x, double* out) {
   Frame ff, ft;
-  if (!frameInWorld(k, g, from, ff) || !frameInWorld(k, g, to, ft)) return false;
-  const double* near = x + 3;
-  mapCoords(g, ft.inverse() * ff, x, out, g.kin ? near : nullptr);
+  if (from == to && from != CoordSystem::ACS && from != CoordSystem::TCS) {
+    // The same system: no frames to compose (the path step converts MCS to MCS every cycle).
+    if (!frameInWorld(k, g, from, ff)) return false;
+    std::copy(x, x + coordCount(g, CoordSystem::MCS), out);
+  } else {
+    if (!frameInWorld(k, g, from, ff) || !frameInWorld(k, g, to, ft)) return false;
+    const double* near = x + 3;
+    mapCoords(g, ft.inverse() * ff, x, out, g.kin ? near : nullptr);
+  }
   // In MCS the coordinates the kinematics does not set are 0 (a rotated PCS gives them values).
   if (to == CoordSystem::MCS && g.kin)
     for (int i = 0; i < 6; ++i)

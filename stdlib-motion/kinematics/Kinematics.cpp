@@ -20,6 +20,7 @@ const char* statusName(KinStatus s) {
 
 double wrapPi(double a) {
   constexpr double kTwoPi = 2 * std::numbers::pi;
+  if (a > -std::numbers::pi && a <= std::numbers::pi) return a;   // the usual case, without the division
   double r = std::remainder(a, kTwoPi);   // [-pi, pi]
   return r <= -std::numbers::pi ? r + kTwoPi : r;
 }
