@@ -531,6 +531,16 @@ std::shared_ptr<const GroupKinematics> kinematicsOf(const stc_interface& itf) {
     spec.model = KinModel::TripodLinear;
     p[0] = f->dOuterRadius, p[1] = f->dInnerRadius, p[2] = f->dLength, p[3] = f->dAxisAngle, p[4] = f->dRotationOffset;
     p[5] = f->dOffsetA0, p[6] = f->dOffsetA1, p[7] = f->dOffsetA2;
+  } else if (is(sm3::Kin_Scara3_Z_typename)) {
+    const auto* f = static_cast<const sm3::Kin_Scara3_Z*>(itf.self);
+    spec.model = KinModel::Scara3Z;
+    p[0] = f->dArmLength1, p[1] = f->dArmLength2, p[2] = f->dArmLength3;
+    p[3] = f->dOffsetA0, p[4] = f->dOffsetA1, p[5] = f->dOffsetA2, p[6] = f->dOffsetA3;
+  } else if (is(sm3::Kin_ArticulatedRobot_6DOF_typename)) {
+    const auto* f = static_cast<const sm3::Kin_ArticulatedRobot_6DOF*>(itf.self);
+    spec.model = KinModel::Articulated6;
+    p[0] = f->d1, p[1] = f->a1, p[2] = f->a2, p[3] = f->d3, p[4] = f->a3, p[5] = f->d4, p[6] = f->d6;
+    p[7] = f->dOffsetA0, p[8] = f->dOffsetA1, p[9] = f->dOffsetA2, p[10] = f->dOffsetA3, p[11] = f->dOffsetA4, p[12] = f->dOffsetA5;
   } else {
     return nullptr;
   }

@@ -7,6 +7,7 @@
 #include "stdlib-motion/core/InputBounds.h"
 #include "stdlib-motion/core/Kernel.h"
 #include "stdlib-motion/group/AxisGroup.h"
+#include "stdlib-motion/kinematics/Articulated.h"
 #include "stdlib-motion/kinematics/Cartesian.h"
 #include "stdlib-motion/kinematics/Delta.h"
 #include "stdlib-motion/kinematics/Scara.h"
@@ -101,8 +102,8 @@ struct GroupKinematics::Impl {
   std::unique_ptr<kin::Kinematics> model;   // the arm (Scara2Z: without its Z axis)
   int joints = 0;
   unsigned controlled = 0;
-  double offset[4] = {};   // axis = joint + offset (degrees for revolute joints)
-  bool revolute[4] = {};
+  double offset[6] = {};   // axis = joint + offset (degrees for revolute joints)
+  bool revolute[6] = {};
 };
 
 GroupKinematics::GroupKinematics(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -163,6 +164,24 @@ std::shared_ptr<const GroupKinematics> GroupKinematics::make(const KinSpec& spec
       std::copy(p + 5, p + 8, im->offset);
       break;
     }
+    case KinModel::Scara3Z:
+      im->model = std::make_unique<kin::Scara3>(kin::Scara3Params{p[0], p[1], p[2]});
+      im->joints = 4;
+      im->controlled = 0b1111u;   // X, Y, Z and A (the tool's direction about Z)
+      std::copy(p + 3, p + 7, im->offset);
+      im->revolute[0] = im->revolute[1] = im->revolute[2] = true;
+      break;
+    case KinModel::Articulated6: {
+      const double d1 = p[0], a1 = p[1], a2 = p[2], d3 = p[3], a3 = p[4], d4 = p[5], d6 = p[6];
+      const kin::DhTable dh{{{a1, 90 * kDeg, d1, 0}, {a2, 0, 0, 90 * kDeg}, {a3, 90 * kDeg, d3, 0},
+                             {0, 90 * kDeg, d4, 0}, {0, -90 * kDeg, 0, 0}, {0, 0, d6, 0}}};
+      im->model = std::make_unique<kin::Articulated6>(dh);
+      im->joints = 6;
+      im->controlled = 0b111111u;
+      std::copy(p + 7, p + 13, im->offset);
+      std::fill(im->revolute, im->revolute + 6, true);
+      break;
+    }
   }
   if (!im->model || !im->model->valid()) return nullptr;
   return std::shared_ptr<const GroupKinematics>(new GroupKinematics(std::move(im)));
@@ -191,6 +210,17 @@ bool GroupKinematics::forward(const double* q, double* x) const {
   for (int i = 0; i < 3; ++i)
     if (im.controlled & (1u << i)) x[i] = pose.p[i];
   if (im.spec.model == KinModel::Scara2Z) x[2] = m[2];   // the Z axis
+  if (im.spec.model == KinModel::Scara3Z) {
+    x[2] = m[3];
+    x[3] = std::atan2(pose.R(1, 0), pose.R(0, 0)) / kDeg;
+  }
+  if (im.spec.model == KinModel::Articulated6) {
+    Frame f;
+    setRotation(f, pose.R);
+    double xyzabc[6];
+    f.toCoords(xyzabc);
+    std::copy(xyzabc + 3, xyzabc + 6, x + 3);
+  }
   for (int i = 0; i < 6; ++i)
     if (std::fabs(x[i]) < 1e-13) x[i] = 0;
   return true;
@@ -206,9 +236,12 @@ bool GroupKinematics::inverse(const double* x, const KinConfigData& c, const dou
                         kin::branch(static_cast<int8_t>(c.wrist < 0 ? -1 : 1))};
   double near[kin::kMaxJoints] = {}, m[kin::kMaxJoints] = {};
   if (qNear) modelJoints(im, qNear, near);
-  if (im.spec.model == KinModel::Scara2Z) pose.p.z() = 0;
+  if (im.spec.model == KinModel::Scara2Z || im.spec.model == KinModel::Scara3Z) pose.p.z() = 0;
+  if (im.spec.model == KinModel::Scara3Z) pose.R = rotationAbc(x[3], 0, 0);
+  if (im.spec.model == KinModel::Articulated6) pose.R = rotationAbc(x[3], x[4], x[5]);
   if (!usable(im.model->inverse(pose, cfg, qNear ? near : nullptr, m))) return false;
   if (im.spec.model == KinModel::Scara2Z) m[2] = x[2];
+  if (im.spec.model == KinModel::Scara3Z) m[3] = x[2];
   axisPositions(im, m, q);
   return true;
 }

@@ -46,7 +46,7 @@ struct Frame {
 };
 
 // The kinematic models a group can take (the TRAFO.Kin_* blocks of the ST face).
-enum class KinModel : uint8_t { Gantry2, Gantry3, Scara2Z, TripodRotary, TripodLinear };
+enum class KinModel : uint8_t { Gantry2, Gantry3, Scara2Z, TripodRotary, TripodLinear, Scara3Z, Articulated6 };
 // Parameters by model (lengths in the axes' units, angles in degrees):
 //   Gantry2/3:     [0..2] offsets X, Y, Z (axis = coordinate + offset)
 //   Scara2Z:       [0] arm 1, [1] arm 2, [2..4] offsets of a0, a1 (degrees), a2 (Z)
@@ -54,9 +54,14 @@ enum class KinModel : uint8_t { Gantry2, Gantry3, Scara2Z, TripodRotary, TripodL
 //                  [4] rotation of arm A about Z, [5..7] offsets of a0..a2 (degrees)
 //   TripodLinear:  [0] outer (rail) radius, [1] inner (plate) radius, [2] rod, [3] rail angle,
 //                  [4] rotation of rail A about Z, [5..7] offsets of a0..a2
+//   Scara3Z:       [0..2] arms 1..3, [3..5] offsets of a0..a2 (degrees), [6] of a3 (Z); the
+//                  tool's direction in XY is A (a0 + a1 + a2)
+//   Articulated6:  D-H lengths [0] d1, [1] a1, [2] a2, [3] d3, [4] a3, [5] d4, [6] d6 (the
+//                  manual's CODESYS table: alpha 90, 0, 90, 90, -90, 0; theta offset 90 on
+//                  joint 1), [7..12] offsets of a0..a5 (degrees)
 struct KinSpec {
   KinModel model = KinModel::Gantry3;
-  double param[8] = {};
+  double param[16] = {};
 };
 
 // TRAFO.CONFIGDATA: branch choices of the inverse (+1 / -1; 0 reads as +1).
