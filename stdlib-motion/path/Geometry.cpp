@@ -329,6 +329,26 @@ double Segment::polyInvS(double s) const {
   return invertTable(P.tab, speed, s);
 }
 
+double Segment::polyCurvature(double u) const {
+  const auto& P = g_.poly;
+  const int m = cartMetric_ ? std::min<int>(dims_, 3) : dims_;
+  double q1[kMaxCoords], q2[kMaxCoords], ss = 0, sd = 0;
+  for (int i = 0; i < m; ++i) {
+    const double* c = P.c[i];
+    q1[i] = c[1] + u * (2 * c[2] + u * (3 * c[3] + u * (4 * c[4] + u * 5 * c[5])));
+    q2[i] = 2 * c[2] + u * (6 * c[3] + u * (12 * c[4] + u * 20 * c[5]));
+    ss += q1[i] * q1[i];
+    sd += q1[i] * q2[i];
+  }
+  const double sig = std::sqrt(ss), sigt = sd / sig;
+  double k2 = 0;
+  for (int i = 0; i < m; ++i) {
+    const double d2 = (q2[i] - q1[i] * sigt / sig) / ss;
+    k2 += d2 * d2;
+  }
+  return std::sqrt(k2);
+}
+
 void Segment::finish() {
   s0_ = 0;
   len_ = baseLen_;
@@ -338,6 +358,33 @@ void Segment::finish() {
   switch (kind_) {
     case SegKind::Line: kappaMax_ = 0; break;
     case SegKind::Arc: kappaMax_ = g_.arc.r / (g_.arc.m * g_.arc.m); break;
+    case SegKind::Poly: {
+      // Curvature does not depend on the parameterisation: scan the polynomial's own
+      // parameter (no arc-length inversion per sample), then refine around the largest.
+      const auto& t = g_.poly.tab;
+      const double u0 = t.u[0], u1 = t.u[t.n - 1];
+      constexpr int N = 128;
+      double best = 0;
+      int bi = 0;
+      for (int i = 0; i <= N; ++i) {
+        const double k = polyCurvature(u0 + (u1 - u0) * i / N);
+        if (k > best) {
+          best = k;
+          bi = i;
+        }
+      }
+      double lo = u0 + (u1 - u0) * std::max(0, bi - 1) / N, hi = u0 + (u1 - u0) * std::min(N, bi + 1) / N;
+      const double gr = 0.6180339887498949;
+      for (int it = 0; it < 40; ++it) {
+        const double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
+        const double a = polyCurvature(x1), b = polyCurvature(x2);
+        best = std::max({best, a, b});
+        if (a > b) hi = x2;
+        else lo = x1;
+      }
+      kappaMax_ = best * (1 + 1e-9);
+      break;
+    }
     default: {
       // dense samples, then a golden-section refinement around the largest one
       constexpr int N = 128;

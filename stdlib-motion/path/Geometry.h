@@ -156,6 +156,7 @@ private:
   double ellipseInvG(double g) const;
   double polyS(double u) const;
   double polyInvS(double s) const;
+  double polyCurvature(double u) const;   // the curvature at parameter u (as evalBase gives it)
   void finish();                                       // window = whole, end points, kappaMax
 
   SegKind kind_ = SegKind::Line;
