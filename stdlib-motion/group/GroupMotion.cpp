@@ -384,6 +384,16 @@ void noteTarget(Kernel& k, AxisGroup& g, const double* value, bool relative, boo
   g.targetValid = true;
 }
 
+// TCS: the pose x (X..C in MCS) moved by `delta` given in the tool's own frame; false when
+// the displacement is not finite or implausible.
+bool toolRelative(double* x, const double* delta) {
+  Frame tool, d;
+  if (!Frame::fromCoords(x, tool) || !Frame::fromCoords(delta, d)) return false;
+  double near[3] = {x[3], x[4], x[5]};
+  (tool * d).toCoords(x, near);
+  return true;
+}
+
 // A Direct move's target in its own system -> the members' targets, from the members at q.
 Error directTargets(const Kernel& k, const AxisGroup& g, const DirectInputs& d, const double* q, double* out) {
   const size_t n = g.axes().size();
@@ -397,7 +407,14 @@ Error directTargets(const Kernel& k, const AxisGroup& g, const DirectInputs& d, 
   double x[kMaxGroupAxes] = {};
   if (!coordsOf(k, g, cs, q, x)) return Error::AgInvalidCoordSystem;
   const int m = coordCount(g, cs);
-  for (int i = 0; i < m; ++i) x[i] = relative ? x[i] + d.position[i] : d.position[i];
+  if (static_cast<CoordSystem>(d.coordSystem) == CoordSystem::TCS && g.kin) {
+    // In the tool's frame: the pose becomes tool x displacement (position turned with the
+    // tool, orientation composed); additional axes add.
+    if (!toolRelative(x, d.position)) return Error::AgInvalidMoveInputs;
+    for (int i = 6; i < m; ++i) x[i] += d.position[i];
+  } else {
+    for (int i = 0; i < m; ++i) x[i] = relative ? x[i] + d.position[i] : d.position[i];
+  }
   if (!jointsOf(k, g, cs, x, g.kinConfig, q, out)) return Error::AgUnreachable;
   return Error::None;
 }
@@ -529,6 +546,26 @@ bool specToMcs(const Kernel& k, const AxisGroup& g, CoordSystem cs, path::MoveSp
   return ok;
 }
 
+// A relative path move given in the tool's frame at pose `base` (MCS) -> relative in MCS:
+// end and spline points become (base x displacement) - base, the orientation composed with the
+// tool's; circle points and the plane normal turn with the tool.
+bool specFromTool(const double* base, path::MoveSpec& m, std::vector<path::Vec>& points) {
+  Frame tool;
+  if (!Frame::fromCoords(base, tool)) return false;
+  auto displacement = [&](path::Vec& v) {
+    double x[6];
+    std::copy(base, base + 6, x);
+    if (!toolRelative(x, v.data())) return false;
+    for (int i = 0; i < 6; ++i) v[i] = x[i] - base[i];
+    return true;
+  };
+  bool ok = displacement(m.end);
+  for (path::Vec& p : points) ok = ok && displacement(p);
+  tool.vector(m.aux.data(), m.aux.data());
+  tool.vector(m.normal.data(), m.normal.data());
+  return ok;
+}
+
 Error pathError(const path::AppendResult& r) {
   switch (r.status) {
     case path::PathStatus::Ok: return Error::None;
@@ -655,6 +692,22 @@ void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const 
   const CoordSystem cs = static_cast<CoordSystem>(in.coordSystem);
   cmd.space = pathSpace(g, cs);
   if (cmd.space == CoordSystem::MCS && !specToMcs(k, g, cs, cmd.path.spec, cmd.splinePoints)) return k.fail(fb, Error::AgInvalidCoordSystem, c);
+  if (cs == CoordSystem::TCS && g.kin && (g.kin->controlled() & 0b111000u)) {
+    // In the tool's frame where the move starts: the predecessor's end when it is queued
+    // behind one, else where the tool is now (an aborting move while the path moves takes the
+    // tool's present orientation, not yet that of its stop point).
+    double base[kMaxGroupAxes] = {};
+    const bool behind = in.bufferMode != BufferMode::Aborting && (ptpBusy(g) || !g.queue.empty() || pathMode(g));
+    if (behind && g.targetValid && g.targetCs == CoordSystem::MCS) {
+      std::copy(g.target, g.target + kMaxGroupAxes, base);
+    } else {
+      const std::vector<Kinematic> s = presentStates(k, g, c.nowNs);
+      double q[kMaxGroupAxes] = {};
+      for (size_t i = 0; i < s.size(); ++i) q[i] = s[i].p;
+      if (!coordsOf(k, g, CoordSystem::MCS, q, base)) return k.fail(fb, Error::AgUnreachable, c);
+    }
+    if (!specFromTool(base, cmd.path.spec, cmd.splinePoints)) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  }
   fb.axis = nullptr;
   // Behind a PTP move (or a path in another space): buffered until it ends; aborting a moving
   // PTP move by a path move needs a stop first (docs/motion-groups.md).
