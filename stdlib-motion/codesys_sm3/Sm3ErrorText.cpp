@@ -151,6 +151,7 @@ constexpr uint16_t kSmcNumbers[] = {
     0x711B,  // AgNothingToSave: SMC_AG_NOTHING_TO_SAVE
     0x711C,  // AgNotAtContinuePosition: SMC_AG_NOT_AT_CONTINUE_POSITION
     0x711D,  // AgPcsStillInUse: SMC_AXIS_GROUP_PCS_STILL_IN_USE
+    0x711E,  // AgOrientationMode: SMC_AG_ORIENTATION_MODE_NOT_SUPPORTED
 };
 static_assert(sizeof(kSmcNumbers) / sizeof(kSmcNumbers[0]) == static_cast<size_t>(Error::Count_), "one SMC_ERROR per core fault");
 
@@ -406,6 +407,7 @@ const ErrorText kErrors[] = {
   {28955, "SMC_AG_NOTHING_TO_SAVE", "SMC_GroupSaveContinueData: no MC_GroupHalt / MC_GroupStop of a running move followed in the same cycle (stc)"},
   {28956, "SMC_AG_NOT_AT_CONTINUE_POSITION", "MC_GroupContinue: a member is not at the continue position (SMC_GroupGetContinuePosition) (stc)"},
   {28957, "SMC_AXIS_GROUP_PCS_STILL_IN_USE", "SMC_GroupJog restarted with the PCS its running jog uses: command another move (MC_GroupHalt) first"},
+  {28958, "SMC_AG_ORIENTATION_MODE_NOT_SUPPORTED", "OrientationMode GreatCircle on a path move that turns a multi-axis tool orientation: use SMC_ORIENTATION_MODE.Axis (stc)"},
 };
 
 const ErrorText* find(uint16_t id) {

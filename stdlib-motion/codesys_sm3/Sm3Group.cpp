@@ -112,6 +112,7 @@ PathInputs pathInputs(const T* self, const AxisGroup& g) {
   in.accFactor = self->AccFactor;
   in.jerkFactor = self->JerkFactor;
   in.coordSystem = self->CoordSystem;
+  in.orientationMode = self->OrientationMode;
   (void)g;
   return in;
 }

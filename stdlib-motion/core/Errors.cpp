@@ -119,6 +119,8 @@ FaultClass faultClass(Error e) {
     case Error::AgNotAtContinuePosition:
     case Error::AgPcsStillInUse:
       return FaultClass::WrongState;
+    case Error::AgOrientationMode:
+      return FaultClass::InvalidParameter;
     case Error::AgInvalidKinematics:
     case Error::AgUnreachable:
     case Error::AgInvalidCoordSystem:

@@ -156,6 +156,7 @@ enum class Error : uint16_t {
   AgNothingToSave,        // SMC_GroupSaveContinueData without a halt / stop of a running move after it in its cycle
   AgNotAtContinuePosition,   // MC_GroupContinue of saved data while a member is off the continue position
   AgPcsStillInUse,        // SMC_GroupJog restarted with the PCS of the jog that still tracks
+  AgOrientationMode,      // OrientationMode GreatCircle on a move that turns a multi-axis tool orientation
   Count_,   // the number of faults (not a fault)
 };
 

@@ -692,10 +692,12 @@ void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const 
   const CoordSystem cs = static_cast<CoordSystem>(in.coordSystem);
   cmd.space = pathSpace(g, cs);
   if (cmd.space == CoordSystem::MCS && !specToMcs(k, g, cs, cmd.path.spec, cmd.splinePoints)) return k.fail(fb, Error::AgInvalidCoordSystem, c);
-  if (cs == CoordSystem::TCS && g.kin && (g.kin->controlled() & 0b111000u)) {
-    // In the tool's frame where the move starts: the predecessor's end when it is queued
-    // behind one, else where the tool is now (an aborting move while the path moves takes the
-    // tool's present orientation, not yet that of its stop point).
+  if (in.orientationMode != 0 && in.orientationMode != 1) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+  const unsigned turning = g.kin ? g.kin->controlled() & 0b111000u : 0;
+  if (cmd.space == CoordSystem::MCS && turning) {
+    // The tool's pose where the move starts: the predecessor's end when it is queued behind
+    // one, else where the tool is now (an aborting move while the path moves takes the tool's
+    // present orientation, not yet that of its stop point).
     double base[kMaxGroupAxes] = {};
     const bool behind = in.bufferMode != BufferMode::Aborting && (ptpBusy(g) || !g.queue.empty() || pathMode(g));
     if (behind && g.targetValid && g.targetCs == CoordSystem::MCS) {
@@ -706,7 +708,16 @@ void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const 
       for (size_t i = 0; i < s.size(); ++i) q[i] = s[i].p;
       if (!coordsOf(k, g, CoordSystem::MCS, q, base)) return k.fail(fb, Error::AgUnreachable, c);
     }
-    if (!specFromTool(base, cmd.path.spec, cmd.splinePoints)) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+    // TCS: in the tool's frame there.
+    if (cs == CoordSystem::TCS && !specFromTool(base, cmd.path.spec, cmd.splinePoints)) return k.fail(fb, Error::AgInvalidMoveInputs, c);
+    // GreatCircle and Axis differ only when more than one orientation axis turns.
+    const path::MoveSpec& m = cmd.path.spec;
+    bool turns = false;
+    for (int i = 3; i < 6; ++i) {
+      const double d = m.relative ? m.end[i] : m.end[i] - base[i];
+      turns = turns || std::fabs(std::remainder(d, 360.0)) > 1e-9;
+    }
+    if (in.orientationMode == 0 && turns && (turning & (turning - 1))) return k.fail(fb, Error::AgOrientationMode, c);
   }
   fb.axis = nullptr;
   // Behind a PTP move (or a path in another space): buffered until it ends; aborting a moving

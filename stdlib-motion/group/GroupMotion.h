@@ -66,6 +66,10 @@ struct PathInputs {
   BufferMode bufferMode = BufferMode::Aborting;   // checked, then mapped to spec.buffer
   int transitionMode = 0;                         // MC_TRANSITION_MODE, mapped to spec.transition
   double velFactor = 1, accFactor = 1, jerkFactor = 1;
+  // SMC_ORIENTATION_MODE: 0 GreatCircle, 1 Axis (A, B, C each linear with the path, which
+  // is what the planner does).  GreatCircle is refused (SMC_AG_ORIENTATION_MODE) when the move
+  // turns a tool whose orientation has more than one axis (it would differ from Axis).
+  int orientationMode = 1;
 };
 void callGroupMovePath(Kernel& k, FbSlot& fb, AxisGroup& g, bool execute, const PathInputs& in, const CallCtx& c);
 
