@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <toml++/toml.h>
+#include <unistd.h>
 
 #include "stdlib-motion/ProjectToml.h"
 
@@ -39,6 +40,11 @@ bool MotionLibrary::readProject(const std::string& dir, const std::vector<std::s
 
 MotionSession::MotionSession(const MotionLibrary& lib, const MotionConfig& cfg) : lib_(lib), cfg_(cfg) {
   kernel.profile = cfg_.profile;
+}
+
+MotionSession::~MotionSession() {
+  for (OpenFile& f : files)   // what the program left open ends with the run
+    if (f.fd >= 0) ::close(f.fd);
 }
 
 void MotionSession::noSession() {

@@ -178,6 +178,17 @@ public:
   }
   const std::string& filesDir() const { return cfg_.filesDir; }
 
+  // FILE.* (CAA File, codesys_sm3/Sm3File.cpp): the files the program has open; a handle
+  // is slot + 1 with the slot's generation above, so a stale handle finds nothing.
+  struct OpenFile {
+    int fd = -1;
+    uint32_t generation = 0;
+    bool read = false, write = false, exclusive = false;
+    std::string path;   // resolved, for xExclusive
+  };
+  std::vector<OpenFile> files;
+  ~MotionSession() override;
+
 private:
   [[noreturn]] static void noSession();
   const MotionLibrary& lib_;

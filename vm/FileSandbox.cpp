@@ -29,7 +29,7 @@ bool resolve(const std::string& rootName, const std::string& name, FileAccess ac
   fs::path rootAbs = fs::absolute(shown, ec);
   if (ec) return why = "not a valid file name", false;
   if (!fs::exists(rootAbs, ec)) {
-    if (access == FileAccess::Read || !create) return why = "'" + shown + "' does not exist", false;
+    if (access == FileAccess::Read || access == FileAccess::ReadWrite || !create) return why = "'" + shown + "' does not exist", false;
     if (::mkdir(rootAbs.c_str(), 0755) != 0 && errno != EEXIST)
       return why = "cannot create '" + shown + "': " + std::strerror(errno), false;
   }
@@ -98,8 +98,14 @@ int openInside(const std::string& root, const std::string& name, FileAccess acce
     dfd = next;
   }
   const bool write = access != FileAccess::Read;
+  const bool read = access == FileAccess::Read || access == FileAccess::ReadWrite || access == FileAccess::ReadWriteNew ||
+                    access == FileAccess::AppendRead;
+  const bool create = write && access != FileAccess::ReadWrite;
+  const bool truncate = access == FileAccess::Write || access == FileAccess::WriteMakeDirs || access == FileAccess::ReadWriteNew;
+  const bool append = access == FileAccess::Append || access == FileAccess::AppendRead;
   // No O_TRUNC here: the file is checked first (a FIFO, a device or a hard link is left as it was).
-  const int flags = (write ? O_WRONLY | O_CREAT : O_RDONLY) | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC | O_NOCTTY;
+  const int flags = (read && write ? O_RDWR : write ? O_WRONLY : O_RDONLY) | (create ? O_CREAT : 0) | (append ? O_APPEND : 0) |
+                    O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC | O_NOCTTY;
   int fd = ::openat(dfd, parts.back().c_str(), flags, 0644);
   const int e = errno;
   ::close(dfd);
@@ -113,7 +119,7 @@ int openInside(const std::string& root, const std::string& name, FileAccess acce
     ::close(fd);
     return why = "the file has other hard links (it may be a file outside the directory)", -1;
   }
-  if (write && ::ftruncate(fd, 0) != 0) {
+  if (truncate && ::ftruncate(fd, 0) != 0) {
     why = std::string("cannot truncate: ") + std::strerror(errno);
     ::close(fd);
     return -1;

@@ -21,6 +21,10 @@ enum class FileAccess {
   Read,          // an existing regular file
   Write,         // created or truncated; the root is created if missing (its parent must exist)
   WriteMakeDirs, // as Write, and missing directories between the root and the file are created
+  ReadWrite,     // an existing regular file, read and written, kept as it is
+  ReadWriteNew,  // created or truncated, read and written
+  Append,        // created if missing, kept, every write at the end (write only)
+  AppendRead,    // as Append, and read
 };
 
 // Opens `name` inside `root` (an empty root is the working directory).  Returns a file

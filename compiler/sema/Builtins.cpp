@@ -115,6 +115,8 @@ void SemaImpl::registerBuiltins() {
     builtinSymbols_[name] = s;
     builtins_.push_back(std::move(bi));
   };
+  // Every X_TO_Y of the elementary types (INT_TO_REAL, DINT_TO_STRING, LREAL_TO_STRING, ...)
+  // and the generic TO_Y.
   int n = static_cast<int>(std::size(kElementary));
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j)

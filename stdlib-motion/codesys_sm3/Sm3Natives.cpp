@@ -229,6 +229,7 @@ void registerSm3Natives(MotionLibrary& lib) {
   registerLeadshineNatives(lib);
   registerSm3ConfigNatives(lib);
   registerSm3DiagNatives(lib);
+  registerSm3FileNatives(lib);
   registerSm3ProfilesNatives(lib);
   registerSm3HomingNatives(lib);
   registerSm3SyncNatives(lib);
