@@ -843,7 +843,7 @@ def gen_comp(rng, p):
     entry from outside the contour by a line, exit by a line after G40."""
     r_tool = rng.choice([500, 1000, 1500, 2000, 2500, 3000, 4000])
     n = rng.randrange(3, 9)
-    cx, cy = rng.randrange(-40000, 40001), rng.randrange(-40000, 40001)
+    cx, cy = rng.randrange(-4000, 4001) * 10, rng.randrange(-4000, 4001) * 10
     while True:
         angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(n))
         gaps = [(angles[(i + 1) % n] - angles[i]) % (2 * math.pi) for i in range(n)]
@@ -852,7 +852,8 @@ def gen_comp(rng, p):
     verts = []
     for a in angles:
         rad = rng.uniform(20000, 60000)
-        verts.append([cx + int(round(rad * math.cos(a))), cy + int(round(rad * math.sin(a))), 0])
+        # on a 0.01 mm grid: every edge then has an exact interior point (the overrun below)
+        verts.append([cx + 10 * int(round(rad * math.cos(a) / 10)), cy + 10 * int(round(rad * math.sin(a) / 10)), 0])
     if rng.random() < 0.5:
         verts.reverse()                    # clockwise
     side = rng.choice("LR")
@@ -869,6 +870,7 @@ def gen_comp(rng, p):
         p.incremental()
     p.comp_on(side, r_tool)
     p.move("G1", [v0[0], v0[1], z], _feed(rng, p, 0.2))
+    first_is_line = True
     for i in range(n):
         a, b = verts[i], verts[(i + 1) % n]
         tgt = [b[0], b[1], z]
@@ -878,13 +880,73 @@ def gen_comp(rng, p):
             r = max(r, 3 * r_tool)
             if 4 * r * r > chord * chord:
                 p.arc(rng.choice(["G2", "G3"]), tgt, r=r, f=_feed(rng, p, 0.2))
+                first_is_line = first_is_line and i > 0
                 continue
         p.move("G1", tgt, _feed(rng, p, 0.2))
+    # mostly overrun the start along the first edge (exactly on it), so that the corner at the
+    # first vertex is compensated too; otherwise the exit leaves from that vertex
+    dx, dy = verts[1][0] - v0[0], verts[1][1] - v0[1]
+    g = math.gcd(dx, dy)
+    if first_is_line and g > 1 and rng.random() < 0.7:
+        k = g // 2
+        p.move("G1", [v0[0] + dx // g * k, v0[1] + dy // g * k, z])
+    if not comp_corners_ok(p):
+        raise ValueError("a corner that rs274 takes as straight")
     p.comp_off()
     p.move("G1", entry)
     if p.inc:
         p.absolute()
     p.move("G0", [entry[0], entry[1], 5000])
+
+
+def _arc_centre_xy(e):
+    """the centre (mm) of a programmed XY arc of Prog.expect, by centre or by R (the usual
+    construction: on the chord's bisector, on the side given by the direction and R's sign)."""
+    s = [v / 1000 for v in e["start"]]
+    t = [v / 1000 for v in e["end"]]
+    if e["centre"] is not None:
+        return [v / 1000 for v in e["centre"][:2]]
+    r = e["r"] / 1000
+    dx, dy = t[0] - s[0], t[1] - s[1]
+    chord = math.hypot(dx, dy)
+    h = math.sqrt(max(r * r - chord * chord / 4, 0.0))
+    sign = (1 if e["g"] == "G3" else -1) * (1 if r > 0 else -1)
+    return [(s[0] + t[0]) / 2 - sign * h * dy / chord, (s[1] + t[1]) / 2 + sign * h * dx / chord]
+
+
+def _tangents_xy(e):
+    """unit directions of travel (XY) at the start and at the end of a programmed element."""
+    s = [v / 1000 for v in e["start"]]
+    t = [v / 1000 for v in e["end"]]
+    if e["g"] in ("G0", "G1"):
+        d = math.hypot(t[0] - s[0], t[1] - s[1])
+        u = ((t[0] - s[0]) / d, (t[1] - s[1]) / d)
+        return u, u
+    c = _arc_centre_xy(e)
+    k = 1 if e["g"] == "G3" else -1
+
+    def tan(q):
+        rx, ry = q[0] - c[0], q[1] - c[1]
+        d = math.hypot(rx, ry)
+        return (-k * ry / d, k * rx / d)
+    return tan(s), tan(t)
+
+
+def comp_corners_ok(p, small=0.06):
+    """rs274 treats a corner between compensated elements that turns by less than 0.05 rad
+    (TOLERANCE_CONCAVE_CORNER) as straight: neither intersected nor rounded, which leaves the
+    tool up to r (1 - cos 0.05) off the exact offset path. Keep the random contours clear of
+    such corners (tangent joins, turn 0, are exact and allowed)."""
+    lines = sorted(l for l, e in p.expect.items() if e["compensated"])
+    for l0, l1 in zip(lines, lines[1:]):
+        if l1 != l0 + 1:
+            continue
+        _, a = _tangents_xy(p.expect[l0])
+        b, _ = _tangents_xy(p.expect[l1])
+        turn = abs(math.atan2(a[0] * b[1] - a[1] * b[0], a[0] * b[0] + a[1] * b[1]))
+        if 1e-9 < turn < small:
+            return False
+    return True
 
 
 def random_specs():
