@@ -14,12 +14,16 @@ What it does, for every program of the corpus (hand-written ones named h_*, rand
 random ones drawn from random.Random(<program name>), so the output is deterministic):
   1. writes the program twice from one description: ngc/<name>.ngc in rs274's spelling and
      din/<name>.cnc in our DIN 66025 spelling (Moons / CODESYS SoftMotion), line for line;
-  2. runs LinuxCNC's interpreter on the .ngc twice:
+  2. runs LinuxCNC's interpreter on the .ngc three times:
        - through its Python binding (module `gcode`, the same librs274 as /usr/bin/rs274),
-         which hands over every canonical call with full double precision and the source
-         line of the block that produced it;
+         which hands over every canonical call with the source line of the block that
+         produced it, but a G21 program's lengths divided by 25.4;
+       - the same with G20 in place of G21: the interpreter computes in program units, so this
+         gives its doubles undivided; they are accepted only if v / 25.4 equals the G21 run's
+         value bit for bit, for every value;
        - through the standalone binary `rs274 -g` (prints 4 decimals), as a cross-check:
-         every motion of the two runs must agree to 5e-5 mm;
+         every motion must agree with the module's to 5e-5 mm;
+     and checks every element outside tool compensation against what its block programs;
   3. writes trace/<name>.txt (one line per element, 17 significant digits) and index.txt.
 A random program that rs274 refuses (cutter compensation gouges, for instance) is redrawn
 from the same generator; the number of draws is deterministic too.
