@@ -40,7 +40,6 @@ import math
 import os
 import random
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -726,10 +725,10 @@ def _near(rng, p, span=40000):
     return tgt
 
 
-def _rand_line(rng, p, g=None, axes_changed=None):
+def _rand_line(rng, p, g=None):
     g = g or ("G0" if rng.random() < 0.2 else "G1")
     tgt = list(p.pos)
-    k = axes_changed or rng.choice([1, 2, 2, 3, 3])
+    k = rng.choice([1, 2, 2, 3, 3])
     near = _near(rng, p)
     for a in rng.sample([0, 1, 2], k):
         tgt[a] = near[a]
@@ -1183,6 +1182,7 @@ def run_rs274(prog, tmp):
     with open(path) as f:
         text = f.read()
     inch_path = path[:-4] + ".inch.ngc"
+    assert "\nG21 G91.1 " in text
     with open(inch_path, "w") as f:
         f.write(text.replace("\nG21 G91.1 ", "\nG20 G91.1 ", 1))
     inch_events, err = run_module(inch_path, tmp, "G20")
