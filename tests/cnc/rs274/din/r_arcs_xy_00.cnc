@@ -1,0 +1,22 @@
+(r_arcs_xy_00: random G17 arcs by centre with exact end points, some full circles, lines)
+(rs274 has G21 G91.1 here: millimetres, I J K relative to the start point)
+N30 G17
+N40 G90
+N50 G0 X-33.929 Y42.899 Z-13.107
+N60 G1 X-33.929 Y42.899 Z-1.766 F20
+N70 G3 X-30.529 Y46.299 Z-1.766 I0 J3.4 K0
+N80 G91
+N90 G2 X0 Y0 Z0 I-4 J-7.5 K0
+N100 G1 X0 Y0 Z-12.689
+N110 G2 X-19.6 Y16.8 Z0 I-17 J0 K0
+N120 G3 X-0.5 Y2 Z0 I-4.25 J0 K0
+N130 G3 X-0.34 Y0.38 Z0 I-1.12 J-0.66 K0 F12.5
+N140 G1 X1.063 Y-13.131 Z37.271
+N150 G1 X-27.181 Y-27.469 Z-17.421
+N160 G2 X8.8 Y4.4 Z0 I2.5 J6 K0
+N170 G3 X0 Y-10.5 Z0 I5 J-5.25 K0
+N180 G3 X-0.24 Y0.32 Z0 I-0.12 J0.16 K0
+N190 G3 X-2.3 Y-2.3 Z0 I-1.5 J-0.8 K0 F12.5
+N200 G1 X0.527 Y-6.123 Z-35.555
+N210 G2 X-17.5 Y57.5 Z0 I20 J37.5 K0
+(end of program: rs274 has M2 here, an M-function handshake in our dialect)

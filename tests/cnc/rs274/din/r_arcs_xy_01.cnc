@@ -1,0 +1,18 @@
+(r_arcs_xy_01: random G17 arcs by centre with exact end points, some full circles, lines)
+(rs274 has G21 G91.1 here: millimetres, I J K relative to the start point)
+N30 G17
+N40 G90
+N50 G0 X-41.392 Y-48.26 Z39.547
+N60 G2 X-38.392 Y-48.26 Z39.547 I1.5 J-2 K0 F50
+N70 G3 X-35.312 Y-49.7 Z39.547 I1.54 J-0.72 K0
+N80 G3 X-35.532 Y-48.6 Z39.547 I-1.26 J0.32 K0
+N90 G3 X-33.232 Y-47.9 Z39.547 I0.8 J1.5 K0
+N100 G3 X-34.032 Y-48.5 Z39.547 I-0.4 J-0.3 K0
+N110 G2 X-33.412 Y-50.36 Z39.547 I1.12 J-0.66 K0 F12.5
+N120 G2 X-32.162 Y-50.11 Z39.547 I0.65 J0 K0 F50
+N130 G1 X-64.705 Y-50.11 Z13.017
+N140 G2 X-55.955 Y-58.86 Z13.017 I3.75 J-5 K0 F100
+N150 G3 X-55.955 Y-53.86 Z13.017 I0 J2.5 K0
+N160 G3 X-53.955 Y-53.06 Z13.017 I0 J2.9 K0
+N170 G2 X-54.035 Y-53.22 Z13.017 I0 J-0.1 K0
+(end of program: rs274 has M2 here, an M-function handshake in our dialect)

@@ -1,0 +1,23 @@
+(r_arcs_xy_02: random G17 arcs by centre with exact end points, some full circles, lines)
+(rs274 has G21 G91.1 here: millimetres, I J K relative to the start point)
+N30 G17
+N40 G90
+N50 G0 X-40.795 Y20.081 Z-1.439
+N60 G2 X-37.795 Y18.281 Z-1.439 I3 J1.6 K0 F10
+N70 G2 X-37.735 Y18.101 Z-1.439 I0 J-0.1 K0
+N80 G2 X-29.535 Y18.301 Z-1.439 I4 J4.2 K0
+N90 G3 X-27.535 Y10.301 Z-1.439 I2 J-3.75 K0
+N100 G3 X-28.375 Y10.301 Z-1.439 I-0.42 J0.4 K0
+N110 G91
+N120 G2 X0.02 Y-0.02 Z0 I-0.4 J-0.42 K0
+N130 G2 X-3 Y0 Z0 I-1.5 J2 K0 F10
+N140 G90
+N150 G2 X-31.355 Y-0.219 Z-1.439 I-5 J-5.25 K0
+N160 G2 X-31.355 Y-2.219 Z-1.439 I-0.75 J-1 K0 F25
+N170 G91
+N180 G3 X6.4 Y1.6 Z0 I3 J1.6 K0 F12.5
+N190 G2 X0 Y4 Z0 I1.5 J2 K0
+N200 G3 X-0.32 Y-0.16 Z0 I-0.2 J0 K0
+N210 G2 X-0.28 Y-0.28 Z0 I-0.12 J-0.16 K0
+N220 G3 X-0.24 Y0.36 Z0 I0 J0.26 K0 F2.5
+(end of program: rs274 has M2 here, an M-function handshake in our dialect)

@@ -1,0 +1,23 @@
+(r_arcs_xy_04: random G17 arcs by centre with exact end points, some full circles, lines)
+(rs274 has G21 G91.1 here: millimetres, I J K relative to the start point)
+N30 G17
+N40 G90
+N50 G0 X-42.231 Y-41.004 Z26.275
+N60 G3 X-34.231 Y-9.004 Z26.275 I8 J15 K0 F2.5
+N70 G3 X-34.231 Y-9.004 Z26.275 I0.4 J-0.3 K0 F12.5
+N80 G91
+N90 G2 X0.1 Y-0.2 Z0 I-3.75 J-2 K0 F50
+N100 G1 X-35.778 Y0 Z-3.209
+N110 G2 X-8.5 Y-8.5 Z0 I-8.5 J0 K0
+N120 G3 X0.05 Y-2.05 Z0 I-1 J-1.05 K0
+N130 G3 X0 Y40 Z0 I-15 J20 K0 F2.5
+N140 G3 X-0.2 Y-0.6 Z0 I0.8 J-0.6 K0 F5
+N150 G90
+N160 G2 X-78.559 Y19.646 Z23.066 I0 J2.5 K0
+N170 G3 X-78.259 Y20.546 Z23.066 I0.3 J0.4 K0
+N180 G2 X-79.659 Y20.346 Z23.066 I-0.8 J0.6 K0
+N190 G91
+N200 G1 X0 Y9.498 Z-39.191
+N210 G1 X-12.967 Y0 Z21.287 F2.5
+N220 G1 X-21.638 Y-37.954 Z0.653
+(end of program: rs274 has M2 here, an M-function handshake in our dialect)

@@ -1,0 +1,20 @@
+(r_arcs_xz_03: random G18 arcs by centre with exact end points, some full circles, lines)
+(rs274 has G21 G91.1 here: millimetres, I J K relative to the start point)
+N30 G17
+N40 G90
+N50 G18
+N60 G0 X18.233 Y-21.51 Z28.245
+N70 G2 X18.233 Y-21.51 Z28.245 I0 J0 K1.7 F5
+N80 G3 X20.483 Y-21.51 Z21.495 I21 J0 K3.25
+N90 G3 X21.163 Y-21.51 Z21.495 I0.34 J0 K0 F25
+N100 G2 X21.163 Y-21.51 Z21.495 I5 J0 K0 F2.5
+N110 G2 X21.163 Y-21.51 Z21.495 I0 J0 K0.5 F10
+N120 G2 X29.913 Y-21.51 Z12.745 I3.75 J0 K-5 F25
+N130 G3 X13.913 Y-21.51 Z50.745 I-3.25 J0 K21 F25
+N140 G2 X12.913 Y-21.51 Z47.745 I-5 J0 K0 F2.5
+N150 G91
+N160 G3 X7 Y0 Z-1 I3 J0 K-4 F10
+N170 G2 X-0.5 Y0 Z2.5 I-6.5 J0 K0
+N180 G90
+N190 G2 X17.833 Y-21.51 Z50.185 I-0.32 J0 K1.26
+(end of program: rs274 has M2 here, an M-function handshake in our dialect)

@@ -1,0 +1,23 @@
+(r_arcs_xz_04: random G18 arcs by centre with exact end points, some full circles, lines)
+(rs274 has G21 G91.1 here: millimetres, I J K relative to the start point)
+N30 G17
+N40 G90
+N50 G18
+N60 G0 X-21.509 Y-11.645 Z-26.02
+N70 G2 X-21.009 Y-11.645 Z-28.52 I6.5 J0 K0 F2.5
+N80 G3 X-6.509 Y-11.645 Z-57.52 I8.25 J0 K-14
+N90 G91
+N100 G1 X-35.043 Y36.998 Z-32.699 F50
+N110 G1 X-28.724 Y32.559 Z29.37
+N120 G3 X-17.75 Y0 Z-24.25 I-21 J0 K-3.25 F10
+N130 G3 X0 Y0 Z42 I-20 J0 K21 F50
+N140 G1 X0 Y0 Z-1.673
+N150 G3 X-1.25 Y0 Z-0.25 I-0.65 J0 K0
+N160 G2 X-0.2 Y0 Z-0.4 I0.3 J0 K-0.4 F50
+N170 G1 X-5.452 Y-35.348 Z0
+N180 G3 X-0.35 Y0 Z1.15 I0.4 J0 K0.75
+N190 G3 X0.8 Y0 Z0.1 I0 J0 K3.25
+N200 G3 X-3.2 Y0 Z2.4 I-1.6 J0 K1.2 F2.5
+N210 G2 X15.5 Y0 Z15.5 I12 J0 K3.5 F10
+N220 G2 X-30.4 Y0 Z12.8 I-13.6 J0 K10.2
+(end of program: rs274 has M2 here, an M-function handshake in our dialect)

@@ -1,0 +1,16 @@
+(r_arcs_yz_01: random G19 arcs by centre with exact end points, some full circles, lines)
+(rs274 has G21 G91.1 here: millimetres, I J K relative to the start point)
+N30 G17
+N40 G90
+N50 G19
+N60 G0 X-27.894 Y48.412 Z49.341
+N70 G2 X-27.894 Y64.412 Z41.341 I0 J6 K-8 F50
+N80 G3 X-27.894 Y62.162 Z37.591 I0 J-4.25 K0
+N90 G2 X-27.894 Y46.162 Z45.591 I0 J-6 K8 F2.5
+N100 G2 X-27.894 Y66.962 Z61.191 I0 J10.4 K7.8 F25
+N110 G2 X-27.894 Y65.962 Z102.191 I0 J-21 K20 F20
+N120 G2 X-27.894 Y40.962 Z92.191 I0 J-10.5 K-10
+N130 G2 X-27.894 Y41.562 Z91.991 I0 J0.6 K0.8 F12.5
+N140 G3 X-27.894 Y39.962 Z92.791 I0 J-1 K0
+N150 G3 X-27.894 Y32.462 Z105.291 I0 J0 K8.5
+(end of program: rs274 has M2 here, an M-function handshake in our dialect)

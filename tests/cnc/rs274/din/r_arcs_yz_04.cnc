@@ -1,0 +1,22 @@
+(r_arcs_yz_04: random G19 arcs by centre with exact end points, some full circles, lines)
+(rs274 has G21 G91.1 here: millimetres, I J K relative to the start point)
+N30 G17
+N40 G90
+N50 G19
+N60 G0 X13.296 Y2.639 Z-18.814
+N70 G3 X13.296 Y2.639 Z-10.814 I0 J-3 K4 F2.5
+N80 G3 X13.296 Y-1.411 Z-9.464 I0 J-1.25 K3
+N90 G2 X13.296 Y-2.211 Z-11.064 I0 J-2 K0 F50
+N100 G3 X13.296 Y-2.411 Z-10.864 I0 J0.6 K0.8
+N110 G91
+N120 G1 X0 Y0 Z38.605 F50
+N130 G3 X0 Y-2.3 Z0.7 I0 J-0.8 K1.5
+N140 G3 X0 Y-0.3 Z-0.9 I0 J0 K-0.5
+N150 G1 X0 Y0 Z-34.313
+N160 G3 X0 Y-0.1 Z0.2 I0 J-0.25 K0
+N170 G2 X0 Y-3.5 Z-0.5 I0 J-2 K1.5 F12.5
+N180 G1 X39.603 Y26.509 Z0
+N190 G90
+N200 G2 X52.899 Y29.198 Z-11.172 I0 J7.7 K3.6
+N210 G3 X52.899 Y33.798 Z6.628 I0 J11.2 K6.6 F10
+(end of program: rs274 has M2 here, an M-function handshake in our dialect)

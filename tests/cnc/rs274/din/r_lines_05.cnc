@@ -1,0 +1,20 @@
+(r_lines_05: random G0/G1 lines, G90/G91 switches, feed changes)
+(rs274 has G21 G91.1 here: millimetres, I J K relative to the start point)
+N30 G17
+N40 G90
+N50 G0 X30.514 Y19.535 Z-31.41
+N60 G91
+N70 G1 X20.37 Y-5.063 Z16.781 F2.5
+N80 G0 X36.939 Y0 Z0
+N90 G1 X0 Y34.143 Z0 F25
+N100 G90
+N110 G1 X87.823 Y15.286 Z-30.206
+N120 G0 X64.504 Y17.73 Z-29.037
+N130 G91
+N140 G0 X0 Y23.137 Z-4.519
+N150 G1 X-25.302 Y23.877 Z-16.972
+N160 G0 X-2.058 Y-15.23 Z0
+N170 G1 X38.573 Y0 Z21.432
+N180 G1 X-36.642 Y5.162 Z5.796
+N190 G1 X-12.553 Y0 Z0
+(end of program: rs274 has M2 here, an M-function handshake in our dialect)

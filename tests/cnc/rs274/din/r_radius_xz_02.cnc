@@ -1,0 +1,17 @@
+(r_radius_xz_02: random G18 arcs by positive R, some helical, and lines)
+(rs274 has G21 G91.1 here: millimetres, I J K relative to the start point)
+N30 G17
+N40 G90
+N50 G18
+N60 G0 X-30.335 Y6.61 Z19.74
+N70 G1 X-31.939 Y0.006 Z35.889 F50
+N80 G2 X-37.595 Y0.006 Z3.622 R55.442
+N90 G1 X-5.446 Y0.006 Z-7.898 F25
+N100 G2 X-13.984 Y-6.759 Z-33.949 R47.72 F100
+N110 G3 X-29.992 Y-6.759 Z-6.537 R51.031
+N120 G2 X-45.836 Y-6.759 Z-19.437 R36.407 F50
+N130 G3 X-81.21 Y-6.759 Z13.44 R58.205
+N140 G3 X-102.788 Y-6.759 Z47.825 R30.679 F50
+N150 G3 X-69.135 Y-6.759 Z43.953 R45.808 F50
+N160 G91
+(end of program: rs274 has M2 here, an M-function handshake in our dialect)
