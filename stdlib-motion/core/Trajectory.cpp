@@ -64,13 +64,7 @@ inline Kinematic integrate(const Kinematic& s, double j, double dt) {
           s.a + dt * j};
 }
 
-struct Ctx {
-  double J;       // jerk (jerk mode only)
-  double acc, dec, vel;
-  bool jerkMode;
-  // reciprocals (jerk mode): 1/J and 1/acc, 1/dec, 1/min(acc, dec)
-  double iJ, iAcc, iDec, amin, iAmin;
-};
+using detail::Ctx;
 
 // A velocity transition: up to 3 phases (jerk mode: constant jerk; trapezoidal
 // mode: constant acceleration), total time T and displacement D.
@@ -253,8 +247,9 @@ inline double mapPiece(double lo, double hi, double u) {
 }
 
 // fn(x, T*, mag*, zs) is the residual at x on the piece [lo, hi].
+// (converged: set to true when the result is a point where |fn| <= 4e-16 mag)
 template <class Fn>
-double solveRootOn(const Fn& fn, double lo, double flo, double hi, double fhi, int zs) {
+double solveRootOn(const Fn& fn, double lo, double flo, double hi, double fhi, int zs, bool* converged = nullptr) {
   double u0 = 0, f0 = flo, u1 = 1, f1 = fhi;
   for (int it = 0; it < 100; ++it) {
     double u = u1 - f1 * (u1 - u0) / (f1 - f0);
@@ -266,7 +261,10 @@ double solveRootOn(const Fn& fn, double lo, double flo, double hi, double fhi, i
     double mag;
     const double fu = fn(mapPiece(lo, hi, u), nullptr, &mag, zs);
     if (std::isnan(fu)) return fu;
-    if (std::fabs(fu) <= 4e-16 * mag) return mapPiece(lo, hi, u);
+    if (std::fabs(fu) <= 4e-16 * mag) {
+      if (converged) *converged = true;
+      return mapPiece(lo, hi, u);
+    }
     if ((fu < 0) != (f1 < 0)) {
       u0 = u1; f0 = f1;
     } else {
@@ -404,7 +402,35 @@ PlanStatus planVelocity(const Kinematic& start, double vTarget, const Limits& li
   return PlanStatus::Ok;
 }
 
+namespace {
+
+// What planPosition found about the peak-velocity family on its way to the
+// optimum (TimedFamily::init starts from it instead of finding it again): the
+// breakpoints of vp with D - delta and the transition time there, and the roots
+// of D = delta between them with D - delta and the time at the root.  Not
+// filled (valid false) for the closed-form rest-to-rest plans.
+struct PosScan {
+  bool valid = false;
+  int nb = 0, nr = 0;
+  double bp[8], fv[8], Tv[8];
+  int zs[8];
+  double root[8], rootF[8], rootT[8];
+  int rootSide[8];
+};
+
+PlanStatus planPositionImpl(const Kinematic& start, double target, double vEnd, const Limits& lim, Profile& out,
+                            PosScan* scan);
+
+}  // namespace
+
 PlanStatus planPosition(const Kinematic& start, double target, double vEnd, const Limits& lim, Profile& out) {
+  return planPositionImpl(start, target, vEnd, lim, out, nullptr);
+}
+
+namespace {
+
+PlanStatus planPositionImpl(const Kinematic& start, double target, double vEnd, const Limits& lim, Profile& out,
+                            PosScan* scan) {
   PlanStatus st = checkLimits(lim);
   if (st == PlanStatus::Ok && (!finite(target) || !finite(vEnd) || std::fabs(vEnd) > lim.vel))
     st = PlanStatus::InvalidTarget;
@@ -483,8 +509,19 @@ PlanStatus planPosition(const Kinematic& start, double target, double vEnd, cons
       const double x = solveRoot(P, bp[i], fv[i], bp[i + 1], fv[i + 1]);
       const int side = x != 0 ? 0 : bp[i] == 0 ? 1 : -1;
       double T;
-      P.f(x, &T, nullptr, side);
+      const double fx = P.f(x, &T, nullptr, side);
       if (T < bestT) { bestT = T; bestVp = x; bestTc = 0; bestZs = side; }
+      if (scan) {
+        const int k = scan->nr++;
+        scan->root[k] = x; scan->rootF[k] = fx; scan->rootT[k] = T; scan->rootSide[k] = side;
+      }
+    }
+  }
+  if (scan) {
+    scan->valid = true;
+    scan->nb = nb;
+    for (int i = 0; i < nb; ++i) {
+      scan->bp[i] = bp[i]; scan->zs[i] = zs[i]; scan->fv[i] = fv[i]; scan->Tv[i] = Tv[i];
     }
   }
 
@@ -583,6 +620,8 @@ PlanStatus planPosition(const Kinematic& start, double target, double vEnd, cons
   return PlanStatus::Ok;
 }
 
+}  // namespace
+
 }  // namespace stc::motion
 
 // ---------------------------------------------------------------- timed family
@@ -592,14 +631,14 @@ namespace stc::motion::detail {
 PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd, const Limits& lim) {
   n_ = 0;
   wait_ = false;
-  const PlanStatus st = planPosition(start, target, vEnd, lim, opt_);
+  PosScan scan;
+  const PlanStatus st = planPositionImpl(start, target, vEnd, lim, opt_, &scan);
   if (st != PlanStatus::Ok) return st;
-  lim_ = lim;
   start_ = start;
   target_ = target;
   vEnd_ = vEnd;
   PosProblem P;
-  P.c = makeCtx(lim);
+  P.c = c_ = makeCtx(lim);
   P.v0 = v0_ = start.v;
   P.a0 = a0_ = P.c.jerkMode ? start.a : 0.0;
   P.vEnd = vEnd;
@@ -607,7 +646,8 @@ PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd,
   const double vel = P.c.vel;
   const double vnat = P.c.jerkMode ? P.v0 + P.a0 * std::fabs(P.a0) / (2 * P.c.J) : P.v0;
   // points: the breakpoints of vp (as in planPosition), then the roots of D = delta
-  auto add = [&](double x, int side) {
+  // (x, side) with its D - delta and transition time, into the sorted points
+  auto addKnown = [&](double x, int side, double f, double tt) {
     if (n_ >= kMaxPoints) return;
     int k = n_++;
     while (k > 0 && (x_[k - 1] > x || (x_[k - 1] == x && zs_[k - 1] > side))) {
@@ -616,7 +656,13 @@ PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd,
     }
     x_[k] = x;
     zs_[k] = side;
-    f_[k] = P.f(x, &tt_[k], nullptr, side);
+    f_[k] = f;
+    tt_[k] = tt;
+  };
+  auto add = [&](double x, int side) {
+    double tt;
+    const double f = P.f(x, &tt, nullptr, side);
+    addKnown(x, side, f, tt);
   };
   const double inf = std::numeric_limits<double>::infinity();
   if (start.v == 0 && P.a0 == 0 && vEnd == 0 && delta_ != 0) {
@@ -634,20 +680,33 @@ PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd,
     inS_[1] = false;
     return PlanStatus::Ok;
   }
-  add(-vel, 0);
-  add(0.0, -1);
-  add(0.0, 1);
-  if (vnat > -vel && vnat < vel && vnat != 0) add(vnat, 0);
-  if (vEnd > -vel && vEnd < vel && vEnd != 0 && vEnd != vnat) add(vEnd, 0);
-  add(vel, 0);
-  double roots[8];
-  int nr = 0;
-  for (int i = 0; i + 1 < n_; ++i) {
-    if (x_[i] == 0 && x_[i + 1] == 0) continue;
-    if ((f_[i] < 0 && f_[i + 1] > 0) || (f_[i] > 0 && f_[i + 1] < 0))
-      roots[nr++] = solveRoot(P, x_[i], f_[i], x_[i + 1], f_[i + 1]);
+  if (scan.valid) {
+    // planPosition's breakpoints (sorted; vNat = vEnd twice) and roots, with the
+    // values it computed (the same arithmetic as evaluating them here)
+    for (int i = 0; i < scan.nb; ++i)
+      if (i == 0 || scan.bp[i] != scan.bp[i - 1] || scan.zs[i] != scan.zs[i - 1])
+        addKnown(scan.bp[i], scan.zs[i], scan.fv[i], scan.Tv[i]);
+    for (int i = 0; i < scan.nr; ++i) {
+      const double x = scan.root[i];
+      if (x != 0 || scan.rootSide[i] == 1) addKnown(x, x == 0 ? 1 : 0, scan.rootF[i], scan.rootT[i]);
+      else add(x, 1);   // (a root at 0 from the left: the points use 0+)
+    }
+  } else {
+    add(-vel, 0);
+    add(0.0, -1);
+    add(0.0, 1);
+    if (vnat > -vel && vnat < vel && vnat != 0) add(vnat, 0);
+    if (vEnd > -vel && vEnd < vel && vEnd != 0 && vEnd != vnat) add(vEnd, 0);
+    add(vel, 0);
+    double roots[8];
+    int nr = 0;
+    for (int i = 0; i + 1 < n_; ++i) {
+      if (x_[i] == 0 && x_[i + 1] == 0) continue;
+      if ((f_[i] < 0 && f_[i + 1] > 0) || (f_[i] > 0 && f_[i + 1] < 0))
+        roots[nr++] = solveRoot(P, x_[i], f_[i], x_[i + 1], f_[i + 1]);
+    }
+    for (int i = 0; i < nr; ++i) add(roots[i], roots[i] == 0 ? 1 : 0);
   }
-  for (int i = 0; i < nr; ++i) add(roots[i], roots[i] == 0 ? 1 : 0);
   // stop and wait: D(0) = delta on one side of 0
   for (int i = 0; i < n_; ++i) {
     if (x_[i] == 0 && f_[i] == 0 && (!wait_ || tt_[i] < waitT_)) {
@@ -702,10 +761,12 @@ bool TimedFamily::feasible(double T) const {
 }
 
 bool TimedFamily::plan(double T, Profile& out) const {
-  out = opt_;
-  if (closeTo(T, minimum())) return true;
+  if (closeTo(T, minimum())) {
+    out = opt_;
+    return true;
+  }
   PosProblem P;
-  P.c = makeCtx(lim_);
+  P.c = c_;
   P.v0 = v0_;
   P.a0 = a0_;
   P.vEnd = vEnd_;
@@ -733,13 +794,19 @@ bool TimedFamily::plan(double T, Profile& out) const {
     if (!(T >= lo && T <= hi) && !closeTo(T, lo) && !closeTo(T, hi)) continue;
     if (closeTo(T, g_[i]) && x_[i] != 0) { vp = x_[i]; side = zs_[i]; found = true; break; }
     if (closeTo(T, g_[i + 1]) && x_[i + 1] != 0) { vp = x_[i + 1]; side = zs_[i + 1]; found = true; break; }
-    const double hlo = h(x_[i], nullptr, nullptr, zs_[i]), hhi = h(x_[i + 1], nullptr, nullptr, zs_[i + 1]);
+    // h at the points from their stored D - delta and transition time (as h computes it)
+    const double hlo = x_[i] * (tt_[i] - T) - f_[i], hhi = x_[i + 1] * (tt_[i + 1] - T) - f_[i + 1];
     if (!((hlo <= 0 && hhi >= 0) || (hlo >= 0 && hhi <= 0))) continue;
     const int z = x_[i] == 0 ? 1 : x_[i + 1] == 0 ? -1 : 0;
-    vp = solveRootOn(h, x_[i], hlo, x_[i + 1], hhi, z);
+    bool converged = false;
+    vp = solveRootOn(h, x_[i], hlo, x_[i + 1], hhi, z, &converged);
     side = vp != 0 ? 0 : z;
-    double mag = 0;
-    found = !std::isnan(vp) && std::fabs(h(vp, nullptr, &mag, side)) <= 1e-11 * mag;
+    if (converged) {   // (|h| <= 4e-16 mag there: well inside the check below)
+      found = true;
+    } else {
+      double mag = 0;
+      found = !std::isnan(vp) && std::fabs(h(vp, nullptr, &mag, side)) <= 1e-11 * mag;
+    }
   }
   if (!found) return false;
   Trans r1, r2;
@@ -757,11 +824,7 @@ bool TimedFamily::plan(double T, Profile& out) const {
   out.finish({target_, vEnd_, 0.0});
   // (G is not always monotone between the points: a piece whose end values
   // bracket T may not hold a plan of duration T)
-  if (!(std::fabs(out.duration() - T) <= 1e-10 * std::max(1.0, T))) {
-    out = opt_;
-    return false;
-  }
-  return true;
+  return std::fabs(out.duration() - T) <= 1e-10 * std::max(1.0, T);
 }
 
 }  // namespace stc::motion::detail

@@ -15,6 +15,15 @@
 
 namespace stc::motion::detail {
 
+// The limits as the planner uses them (Trajectory.cpp: makeCtx).
+struct Ctx {
+  double J;       // jerk (jerk mode only)
+  double acc, dec, vel;
+  bool jerkMode;
+  // reciprocals (jerk mode): 1/J and 1/acc, 1/dec, 1/min(acc, dec)
+  double iJ, iAcc, iDec, amin, iAmin;
+};
+
 class TimedFamily {
 public:
   // Plans the time-optimal motion and prepares the family.  Same checks and
@@ -26,7 +35,7 @@ public:
   int starts(double* out, int cap) const;
   // Can the axis arrive (target, vEnd, a = 0) after exactly T seconds?
   bool feasible(double T) const;
-  // A plan of duration T (T feasible); false (out = the optimal plan) otherwise.
+  // A plan of duration T (T feasible); false (out unspecified) otherwise.
   bool plan(double T, Profile& out) const;
 
   static constexpr int kMaxPoints = 16;
@@ -34,7 +43,7 @@ public:
 
 private:
   // the problem
-  Limits lim_;
+  Ctx c_;
   Kinematic start_;
   double target_ = 0, vEnd_ = 0, delta_ = 0, v0_ = 0, a0_ = 0;
   Profile opt_;
