@@ -155,12 +155,19 @@ inline void trans(double u, double a0, double w, const Ctx& c, Trans& r, int uz 
   else transTrap(u, w, c, r);
 }
 
-void pushTrans(Profile& out, const Trans& r, bool jerkMode) {
-  for (int i = 0; i < r.n; ++i) {
-    if (!(r.dur[i] > 0)) continue;
-    if (jerkMode) out.push(r.dur[i], r.val[i]);
-    else out.pushAcc(r.dur[i], r.val[i]);
-  }
+void pushTrans(Profile& out, const Trans& r, bool jerkMode) { out.pushSegments(r.dur, r.val, r.n, !jerkMode); }
+
+// The plan of the peak-velocity shape: transition r1 into vp, (snapped to vp, a = 0)
+// cruise for tc (if > 0), transition r2; as pushTrans(r1), snap(vp, 0), push(tc, 0),
+// pushTrans(r2) (trapezoidal mode: pushAcc).
+void pushPeakPlan(Profile& out, const Trans& r1, double vp, double tc, const Trans& r2, bool jerkMode) {
+  double dur[7], val[7];
+  int n = 0;
+  for (int i = 0; i < r1.n; ++i) { dur[n] = r1.dur[i]; val[n++] = r1.val[i]; }
+  const int snapAt = n;
+  dur[n] = tc; val[n++] = 0.0;
+  for (int i = 0; i < r2.n; ++i) { dur[n] = r2.dur[i]; val[n++] = r2.val[i]; }
+  out.pushSegments(dur, val, n, !jerkMode, snapAt, vp);
 }
 
 inline bool finite(double x) { return std::isfinite(x); }
@@ -281,6 +288,100 @@ double solveRoot(const PosProblem& p, double lo, double flo, double hi, double f
   return solveRootOn(fn, lo, flo, hi, fhi, zs);
 }
 
+// The cruise equation of TimedFamily::plan: h(x) = x (T1 + T2 - T) - (D(x) - delta)
+// is zero where the family member with peak velocity x, cruising for the rest of
+// T, ends at the target (T1, T2: the transitions into and out of x; D: their
+// displacement).  With its derivatives in x: inside a piece the transitions keep
+// their direction and bound, and, for the transition into x (mirrored frame: end
+// velocity wp = s x, final ramp at acceleration ap for t3), dT1/dx = s / ap and
+// dD1/dx = wp / ap + t3 / 2; for the one out of x (start up = s x, first ramp at
+// ap for t1), dT2/dx = -s / ap and dD2/dx = t1 / 2 - up / ap.  When both have a
+// plateau (trapezoidal mode: always) T1 + T2 is linear and D quadratic in x, so h
+// is a quadratic with h'' = d(T1 + T2)/dx.
+struct CruiseEval {
+  double x = 0, h = 0, dh = 0, d2h = 0, mag = 0;
+  double dTabs = 0;    // |dT1/dx| + |dT2/dx|
+  bool quad = false;   // h is the quadratic h + dh d + d2h d^2 / 2 around x
+  Trans r1, r2;
+};
+
+inline void cruiseEval(const Ctx& c, double v0, double a0, double vEnd, double delta, double T, double x, int z,
+                       CruiseEval& e) {
+  trans(v0, a0, x, c, e.r1, 0, z);
+  trans(x, 0, vEnd, c, e.r2, z, 0);
+  const Trans &a = e.r1, &b = e.r2;
+  // (the arithmetic of PosProblem::f and of the residual as TimedFamily::plan had it)
+  const double tr = a.T + b.T;
+  const double fx = (a.D + b.D) - delta;
+  e.x = x;
+  e.mag = (std::fabs(a.D) + std::fabs(b.D) + std::fabs(delta)) + std::fabs(x) * (tr + T);
+  e.h = x * (tr - T) - fx;
+  double dT, dD;
+  if (c.jerkMode) {
+    const double ia = c.iJ / a.dur[2], ib = c.iJ / b.dur[0];   // 1 / ap of each
+    dT = a.s * ia - b.s * ib;
+    e.dTabs = std::fabs(ia) + std::fabs(ib);
+    dD = (a.s * x * ia + 0.5 * a.dur[2]) + (0.5 * b.dur[0] - b.s * x * ib);
+    e.quad = a.dur[1] > 0 && b.dur[1] > 0;
+  } else {
+    // ramps at the accelerations val[]: T1 = (x - v0) / val, D1 = (x^2 - v0^2) / (2 val), and
+    // crossing 0: T1 = |v0| / dec + x / val[1], D1 = (v0 t1 + x t2) / 2; likewise out of x
+    double dT1 = 0, dD1 = 0, dT2 = 0, dD2 = 0;
+    if (a.n == 1) { dT1 = 1 / a.val[0]; dD1 = 0.5 * a.T + 0.5 * (v0 + x) * dT1; }
+    else if (a.n == 2) { dT1 = 1 / a.val[1]; dD1 = 0.5 * (a.dur[1] + x * dT1); }
+    if (b.n == 1) { dT2 = -1 / b.val[0]; dD2 = 0.5 * b.T + 0.5 * (x + vEnd) * dT2; }
+    else if (b.n == 2) { dT2 = -1 / b.val[0]; dD2 = 0.5 * (b.dur[0] + x * dT2); }
+    dT = dT1 + dT2;
+    dD = dD1 + dD2;
+    e.dTabs = std::fabs(dT1) + std::fabs(dT2);
+    e.quad = true;
+  }
+  e.dh = (tr - T) + x * dT - dD;
+  e.d2h = dT;
+}
+
+// A root of h on (lo, hi), h(lo) and h(hi) of opposite signs (neither 0): steps
+// to the root of the local quadratic (with a plateau in both transitions: exact up
+// to rounding) or Newton steps, kept inside the bracket (else an Illinois step).
+// True with e at a point where |h| <= 4e-16 mag (as solveRootOn's test); false
+// after kMaxEvals evaluations (e: the last one).
+inline bool cruiseRoot(const Ctx& c, double v0, double a0, double vEnd, double delta, double T, double lo,
+                       double hlo, double hi, double hhi, int z, CruiseEval& e) {
+  constexpr int kMaxEvals = 12;
+  double xa = lo, ha = hlo, xb = hi, hb = hhi;   // the bracket, ha * hb < 0
+  // first point: solveRootOn's first step (secant in its smoothstep variable)
+  double x = mapPiece(lo, hi, hlo / (hlo - hhi));
+  int side = 0;   // the end the last bracket steps kept (Illinois)
+  for (int it = 0; it < kMaxEvals; ++it) {
+    if (!(x > std::min(xa, xb) && x < std::max(xa, xb))) x = 0.5 * (xa + xb);
+    cruiseEval(c, v0, a0, vEnd, delta, T, x, z, e);
+    if (std::isnan(e.h)) return false;
+    if (std::fabs(e.h) <= 4e-16 * e.mag) return true;
+    if ((e.h < 0) == (ha < 0)) { xa = x; ha = e.h; }
+    else { xb = x; hb = e.h; }
+    // the model's step
+    double d = std::numeric_limits<double>::quiet_NaN();
+    if (e.quad && e.d2h != 0) {
+      const double disc = e.dh * e.dh - 2 * e.d2h * e.h;
+      if (disc >= 0) d = -2 * e.h / (e.dh + std::copysign(std::sqrt(disc), e.dh));   // (the smaller root)
+    }
+    if (!std::isfinite(d)) d = -e.h / e.dh;
+    double xn = x + d;
+    if (!(xn > std::min(xa, xb) && xn < std::max(xa, xb))) {
+      // regula falsi on the bracket, halving the value at the end kept twice
+      const int keep = (x == xa) ? 2 : 1;
+      if (side == keep) { if (keep == 1) ha *= 0.5; else hb *= 0.5; }
+      side = keep;
+      xn = xb - hb * (xb - xa) / (hb - ha);
+    } else {
+      side = 0;
+    }
+    if (xn == x) return false;
+    x = xn;
+  }
+  return false;
+}
+
 // Rest-to-rest (v0 = a0 = vEnd = 0), jerk-limited, closed form.  The rising
 // transition uses acc (A1), the falling one dec (A2); each is a triangle of time
 // 2 sqrt(vp/J) below vp = A^2/J, else a trapezoid of time vp/A + A/J, and the
@@ -329,10 +430,7 @@ void planRestToRestJerk(const Kinematic& start, double target, const Ctx& c, Pro
   transJerk(0, 0, dir * vp, c, r1);
   transJerk(dir * vp, 0, 0, c, r2);
   out.clear(start);
-  pushTrans(out, r1, true);
-  out.snap(dir * vp, 0.0);
-  if (tc > 0) out.push(tc, 0.0);
-  pushTrans(out, r2, true);
+  pushPeakPlan(out, r1, dir * vp, tc, r2, true);
   out.finish({target, 0.0, 0.0});
 }
 
@@ -359,6 +457,25 @@ void Profile::pushAcc(double duration, double acc) {
   segs_[count_++] = {duration_, cur_.p, cur_.v, acc, 0.0, duration};
   cur_ = integrate(cur_, 0.0, duration);
   duration_ += duration;
+}
+
+void Profile::pushSegments(const double* dur, const double* val, int n, bool acc, int snapAt, double snapV) {
+  Kinematic c = cur_;
+  double t = duration_;
+  int k = count_;
+  for (int i = 0; i < n; ++i) {
+    if (i == snapAt) { c.v = snapV; c.a = 0.0; }
+    if (!(dur[i] > 0) || k >= kMaxSegments) continue;
+    const double j = acc ? 0.0 : val[i];
+    if (acc) c.a = val[i];
+    segs_[k++] = {t, c.p, c.v, c.a, j, dur[i]};
+    c = integrate(c, j, dur[i]);
+    t += dur[i];
+  }
+  if (snapAt >= n) { c.v = snapV; c.a = 0.0; }
+  cur_ = c;
+  duration_ = t;
+  count_ = k;
 }
 
 void Profile::finish(const Kinematic& exactEnd) {
@@ -598,8 +715,9 @@ PlanStatus planPositionImpl(const Kinematic& start, double target, double vEnd, 
       Trans r;
       E.f(bestTe, nullptr, nullptr, &r);
       out.clear(start);
-      if (bestTe > 0) out.push(bestTe, -g * c.J);
-      pushTrans(out, r, true);
+      double dur[4] = {bestTe}, val[4] = {-g * c.J};
+      for (int i = 0; i < r.n; ++i) { dur[1 + i] = r.dur[i]; val[1 + i] = r.val[i]; }
+      out.pushSegments(dur, val, 1 + r.n, false);
       out.finish({target, vEnd, 0.0});
       return PlanStatus::Ok;
     }
@@ -609,13 +727,7 @@ PlanStatus planPositionImpl(const Kinematic& start, double target, double vEnd, 
   trans(P.v0, P.a0, bestVp, c, r1, 0, bestZs);
   trans(bestVp, 0, vEnd, c, r2, bestZs, 0);
   out.clear(start);
-  pushTrans(out, r1, c.jerkMode);
-  out.snap(bestVp, 0.0);
-  if (bestTc > 0) {
-    if (c.jerkMode) out.push(bestTc, 0.0);
-    else out.pushAcc(bestTc, 0.0);
-  }
-  pushTrans(out, r2, c.jerkMode);
+  pushPeakPlan(out, r1, bestVp, bestTc, r2, c.jerkMode);
   out.finish({target, vEnd, 0.0});
   return PlanStatus::Ok;
 }
@@ -774,7 +886,8 @@ bool TimedFamily::plan(double T, Profile& out) const {
   const Ctx& c = P.c;
   double vp = 0;
   int side = 0;
-  bool found = false;
+  bool found = false, haveTrans = false;
+  CruiseEval ev;   // (haveTrans: the transitions at vp)
   if (wait_ && T >= waitT_) {
     vp = 0;
     side = waitSide_;
@@ -798,6 +911,26 @@ bool TimedFamily::plan(double T, Profile& out) const {
     const double hlo = x_[i] * (tt_[i] - T) - f_[i], hhi = x_[i + 1] * (tt_[i + 1] - T) - f_[i + 1];
     if (!((hlo <= 0 && hhi >= 0) || (hlo >= 0 && hhi <= 0))) continue;
     const int z = x_[i] == 0 ? 1 : x_[i + 1] == 0 ? -1 : 0;
+    if (hlo != 0 && hhi != 0 && cruiseRoot(c, v0_, a0_, vEnd_, delta_, T, x_[i], hlo, x_[i + 1], hhi, z, ev)) {
+      // Accepted where the root is well resolved: |h| <= 4e-16 mag leaves vp
+      // uncertain by about kappa, negligible against vp, against its distance to
+      // the piece's ends (where a transition shrinks to nothing, its times and
+      // acceleration ~ sqrt of that distance), in the transition times, and in
+      // the position after cruising (kappa T) against the distance to go.
+      // Otherwise (a tiny transition, a flat h, a long cruise far out and back)
+      // the bracketing solver below, as before: its result there depends on where
+      // it stops inside that uncertainty, and it is kept.
+      const double kappa = 4e-16 * ev.mag / std::fabs(ev.dh);
+      const double dist = std::min(std::fabs(ev.x - x_[i]), std::fabs(x_[i + 1] - ev.x));
+      if (kappa <= 1e-12 * dist && kappa <= 1e-13 * std::max(1.0, std::fabs(ev.x)) && kappa * ev.dTabs <= 1e-12 &&
+          kappa * T <= 1e-12 * std::max(1.0, std::fabs(delta_))) {
+        vp = ev.x;   // (inside the piece: not 0, and its transitions are those of side 0)
+        side = 0;
+        found = haveTrans = true;
+        break;
+      }
+    }
+    // (rare: the bracketing solver of the breakpoints' roots, as before)
     bool converged = false;
     vp = solveRootOn(h, x_[i], hlo, x_[i + 1], hhi, z, &converged);
     side = vp != 0 ? 0 : z;
@@ -809,18 +942,14 @@ bool TimedFamily::plan(double T, Profile& out) const {
     }
   }
   if (!found) return false;
-  Trans r1, r2;
-  trans(P.v0, P.a0, vp, c, r1, 0, side);
-  trans(vp, 0, vEnd_, c, r2, side, 0);
+  if (!haveTrans) {
+    trans(P.v0, P.a0, vp, c, ev.r1, 0, side);
+    trans(vp, 0, vEnd_, c, ev.r2, side, 0);
+  }
+  const Trans &r1 = ev.r1, &r2 = ev.r2;
   const double tc = std::max(0.0, T - r1.T - r2.T);
   out.clear(start_);
-  pushTrans(out, r1, c.jerkMode);
-  out.snap(vp, 0.0);
-  if (tc > 0) {
-    if (c.jerkMode) out.push(tc, 0.0);
-    else out.pushAcc(tc, 0.0);
-  }
-  pushTrans(out, r2, c.jerkMode);
+  pushPeakPlan(out, r1, vp, tc, r2, c.jerkMode);
   out.finish({target_, vEnd_, 0.0});
   // (G is not always monotone between the points: a piece whose end values
   // bracket T may not hold a plan of duration T)

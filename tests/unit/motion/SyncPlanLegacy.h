@@ -2,8 +2,8 @@
 // (commit 2ada7ef): TimedFamily recomputed the breakpoints and roots of the
 // peak-velocity family that planPosition had already found, and plan() solved
 // each candidate from scratch.  Frozen here, test-only, as the reference the
-// faster planner must reproduce (SyncPlanLegacyTest.cpp).  Its one-axis plans
-// come from the public planPosition, whose results did not change.
+// faster planner must reproduce (SyncPlanLegacyTest.cpp), with the one-axis
+// planner of that commit (planPosition, planVelocity) it used.
 #pragma once
 
 #include <algorithm>
@@ -255,6 +255,278 @@ double solveRoot(const PosProblem& p, double lo, double flo, double hi, double f
 }
 
 
+inline PlanStatus checkLimits(const Limits& lim) {
+  auto pos = [](double x) { return finite(x) && x > 0; };
+  if (!pos(lim.vel) || !pos(lim.acc) || !pos(lim.dec)) return PlanStatus::InvalidLimits;
+  if (std::isnan(lim.jerk) || lim.jerk < 0) return PlanStatus::InvalidLimits;
+  return PlanStatus::Ok;
+}
+
+inline bool validState(const Kinematic& s) { return finite(s.p) && finite(s.v) && finite(s.a); }
+
+inline void hold(const Kinematic& start, Profile& out) {
+  out.clear(start);
+  out.finish(start);
+}
+
+// Rest-to-rest (v0 = a0 = vEnd = 0), jerk-limited, closed form.  The rising
+// transition uses acc (A1), the falling one dec (A2); each is a triangle of time
+// 2 sqrt(vp/J) below vp = A^2/J, else a trapezoid of time vp/A + A/J, and the
+// distance of both together is vp (T1 + T2) / 2.  D(vp) grows with vp, so the
+// piece holding the root follows from D at the two breakpoints; on it the root
+// is explicit (both triangles: D = 2 vp^1.5 / sqrt(J); both trapezoids: a
+// quadratic in vp) or, one of each, the positive root of a quartic in
+// s = sqrt(vp) by Newton from the right end (increasing and convex: monotone).
+inline void planRestToRestJerk(const Kinematic& start, double target, const Ctx& c, Profile& out) {
+  const double delta = target - start.p;
+  const double dir = delta > 0 ? 1.0 : -1.0, D = std::fabs(delta);
+  const double J = c.J, iJ = c.iJ, A1 = c.acc, A2 = c.dec;
+  auto tOf = [&](double vp, double A) { return vp * J >= A * A ? vp / A + A * iJ : 2 * std::sqrt(vp * iJ); };
+  auto dOf = [&](double vp) { return 0.5 * vp * (tOf(vp, A1) + tOf(vp, A2)); };
+  double vp, tc = 0;
+  const double dVel = dOf(c.vel);
+  if (dVel <= D) {
+    vp = c.vel;
+    tc = (D - dVel) / c.vel;
+  } else {
+    const double b1 = std::min(A1, A2), b2 = std::max(A1, A2);
+    const double vLo = b1 * b1 * iJ, vHi = b2 * b2 * iJ;
+    if (vLo >= c.vel || D <= dOf(vLo)) {
+      vp = std::cbrt(0.25 * D * D * J);   // (D sqrt(J) / 2)^(2/3)
+    } else if (vHi >= c.vel || D <= dOf(vHi)) {
+      // s^4 / (2 b1) + s^3 / sqrt(J) + s^2 b1 / (2 J) - D = 0
+      const double k4 = 0.5 / b1, k3 = std::sqrt(iJ), k2 = 0.5 * b1 * iJ;
+      double sq = std::sqrt(std::min(vHi, c.vel));
+      for (int it = 0; it < 60; ++it) {
+        const double s2 = sq * sq;
+        const double h = s2 * (s2 * k4 + sq * k3 + k2) - D;
+        const double dh = sq * (4 * s2 * k4 + 3 * sq * k3 + 2 * k2);
+        const double step = h / dh;
+        sq -= step;
+        if (!(std::fabs(step) > 1e-16 * sq)) break;
+      }
+      vp = sq * sq;
+    } else {
+      // vp^2 (1/A1 + 1/A2) / 2 + vp (A1 + A2) / (2 J) - D = 0
+      const double qa = 0.5 * (1 / A1 + 1 / A2), qb = 0.5 * (A1 + A2) * iJ;
+      vp = 2 * D / (qb + std::sqrt(qb * qb + 4 * qa * D));
+    }
+    vp = std::min(vp, c.vel);
+  }
+  Trans r1, r2;
+  transJerk(0, 0, dir * vp, c, r1);
+  transJerk(dir * vp, 0, 0, c, r2);
+  out.clear(start);
+  pushTrans(out, r1, true);
+  out.snap(dir * vp, 0.0);
+  if (tc > 0) out.push(tc, 0.0);
+  pushTrans(out, r2, true);
+  out.finish({target, 0.0, 0.0});
+}
+
+inline PlanStatus oldPlanVelocity(const Kinematic& start, double vTarget, const Limits& lim, Profile& out) {
+  PlanStatus st = checkLimits(lim);
+  if (st == PlanStatus::Ok && (!finite(vTarget) || std::fabs(vTarget) > lim.vel)) st = PlanStatus::InvalidTarget;
+  if (st == PlanStatus::Ok && !validState(start)) st = PlanStatus::InvalidState;
+  if (st != PlanStatus::Ok) {
+    hold(start, out);
+    return st;
+  }
+  const Ctx c = makeCtx(lim);
+  Trans r;
+  trans(start.v, c.jerkMode ? start.a : 0.0, vTarget, c, r);
+  out.clear(start);
+  pushTrans(out, r, c.jerkMode);
+  // integrated end position (position is free)
+  double pEnd = start.p;
+  if (out.segmentCount() > 0) {
+    const auto& s = out.segment(out.segmentCount() - 1);
+    pEnd = integrate({s.p, s.v, s.a}, s.j, out.duration() - s.t0).p;
+  }
+  out.finish({pEnd, vTarget, 0.0});
+  return PlanStatus::Ok;
+}
+
+inline PlanStatus oldPlanPosition(const Kinematic& start, double target, double vEnd, const Limits& lim, Profile& out) {
+  PlanStatus st = checkLimits(lim);
+  if (st == PlanStatus::Ok && (!finite(target) || !finite(vEnd) || std::fabs(vEnd) > lim.vel))
+    st = PlanStatus::InvalidTarget;
+  if (st == PlanStatus::Ok && !validState(start)) st = PlanStatus::InvalidState;
+  if (st != PlanStatus::Ok) {
+    hold(start, out);
+    return st;
+  }
+  PosProblem P;
+  P.c = makeCtx(lim);
+  if (P.c.jerkMode && start.v == 0 && start.a == 0 && vEnd == 0) {
+    if (target == start.p) hold(start, out);
+    else planRestToRestJerk(start, target, P.c, out);
+    return PlanStatus::Ok;
+  }
+  const Ctx& c = P.c;
+  P.v0 = start.v;
+  P.a0 = c.jerkMode ? start.a : 0.0;
+  P.vEnd = vEnd;
+  P.delta = target - start.p;
+  const double vel = c.vel;
+  const double vnat = c.jerkMode ? P.v0 + P.a0 * std::fabs(P.a0) / (2 * c.J) : P.v0;
+
+  // Breakpoints of the peak velocity: the pieces between them are searched for
+  // roots of D(vp) = delta (plans without cruise).  v = 0 is a breakpoint with two
+  // sides: the bound of a jerk-limited transition that crosses 0 differs from that
+  // of one that ends or starts at 0, so D jumps there and no root is searched across.
+  double bp[8];
+  int zs[8];   // side of 0 used to evaluate a breakpoint at 0
+  int nb = 0;
+  auto addBp = [&](double x, int side) {   // insertion into the sorted list
+    if (!(x > -vel && x < vel) || (x == 0 && side == 0)) return;
+    int k = nb++;
+    while (k > 0 && bp[k - 1] > x) { bp[k] = bp[k - 1]; zs[k] = zs[k - 1]; --k; }
+    bp[k] = x;
+    zs[k] = side;
+  };
+  bp[nb] = -vel; zs[nb++] = 0;
+  addBp(0.0, -1);
+  addBp(0.0, 1);   // (inserted after 0-, the sort is stable)
+  addBp(vnat, 0);
+  addBp(vEnd, 0);
+  bp[nb] = vel; zs[nb++] = 0;
+
+  double bestT = std::numeric_limits<double>::infinity();
+  double bestVp = 0, bestTc = 0;
+  int bestZs = 0;
+
+  double fv[8], Tv[8];
+  for (int i = 0; i < nb; ++i) fv[i] = P.f(bp[i], &Tv[i], nullptr, zs[i]);
+  // cruise at +-vel
+  if (fv[nb - 1] <= 0) {
+    const double tc = -fv[nb - 1] / vel;
+    const double T = Tv[nb - 1] + tc;
+    if (T < bestT) { bestT = T; bestVp = vel; bestTc = tc; }
+  }
+  if (fv[0] >= 0) {
+    const double tc = fv[0] / vel;
+    const double T = Tv[0] + tc;
+    if (T < bestT) { bestT = T; bestVp = -vel; bestTc = tc; }
+  }
+  if (c.jerkMode) {
+    // vp = 0 exactly (stop, then restart; D(0) may differ from both one-sided
+    // limits): a root only if it is exact, possible only next to a sign change at 0
+    int i0 = 0;
+    while (i0 < nb && !(bp[i0] == 0)) ++i0;
+    if (i0 + 1 < nb && bp[i0 + 1] == 0 && !((fv[i0] < 0 && fv[i0 + 1] < 0) || (fv[i0] > 0 && fv[i0 + 1] > 0))) {
+      double T0;
+      if (P.f(0.0, &T0) == 0 && T0 < bestT) { bestT = T0; bestVp = 0; bestTc = 0; }
+    }
+  }
+  for (int i = 0; i < nb; ++i) {
+    if (fv[i] == 0 && Tv[i] < bestT) { bestT = Tv[i]; bestVp = bp[i]; bestTc = 0; bestZs = zs[i]; }
+    if (i + 1 < nb && !(bp[i] == 0 && bp[i + 1] == 0) &&
+        ((fv[i] < 0 && fv[i + 1] > 0) || (fv[i] > 0 && fv[i + 1] < 0))) {
+      const double x = solveRoot(P, bp[i], fv[i], bp[i + 1], fv[i + 1]);
+      const int side = x != 0 ? 0 : bp[i] == 0 ? 1 : -1;
+      double T;
+      P.f(x, &T, nullptr, side);
+      if (T < bestT) { bestT = T; bestVp = x; bestTc = 0; bestZs = side; }
+    }
+  }
+
+  // the eased family (jerk-limited, a0 pushing beyond vEnd's side of vNat)
+  bool eased = false;
+  double bestTe = 0;
+  if (c.jerkMode && P.a0 != 0 && (P.a0 > 0 ? vEnd > vnat : vEnd < vnat)) {
+    const EaseProblem E{c, P.v0, P.a0, vEnd, P.delta};
+    const double aa = std::fabs(P.a0), g = P.a0 > 0 ? 1.0 : -1.0;
+    const double tm = aa * c.iJ;
+    double tb[16];
+    int nt = 0;
+    double tCross = -1;   // where v crosses 0 during the ease: the bound A (and D) jump there
+    auto addT = [&](double t) {
+      if (!(t > 0 && t < tm)) return;
+      int k = nt++;
+      while (k > 0 && tb[k - 1] > t) { tb[k] = tb[k - 1]; --k; }
+      tb[k] = t;
+    };
+    tb[nt++] = 0;
+    // v crosses 0 during the ease: g v(te) = g v0 + |a0| te - J te^2 / 2 = 0
+    const double disc = aa * aa + 2 * c.J * g * P.v0;
+    if (g * P.v0 < 0 && disc >= 0) {
+      tCross = (aa - std::sqrt(disc)) * c.iJ;
+      addT(tCross);
+    }
+    // the transition reaches its plateau bound A: a(te)^2 + J g (vEnd - vNat) = A^2,
+    // and the start of the transition is at A
+    const double K = c.J * g * (vEnd - vnat);
+    for (double A : {c.acc, c.dec}) {
+      if (A * A > K) addT((aa - std::sqrt(A * A - K)) * c.iJ);
+      addT((aa - A) * c.iJ);
+    }
+    // D(te) is not monotone: its stationary points (a1 = |a0| - J te, mirrored so
+    // that a0 > 0; vn = g vNat) are, without plateau (ap^2 = a1^2 + K),
+    // 2 a1^2 - 2 J vn = a1 ap, i.e. 3 a1^4 - (8 J vn + K) a1^2 + 4 J^2 vn^2 = 0, and
+    // with a plateau at A, 2 a1^2 - A a1 - 2 J vn = 0.  The total time grows with te.
+    const double vn = g * vnat;
+    {
+      const double b = 8 * c.J * vn + K, q = 4 * c.J * c.J * vn * vn;
+      const double d2 = b * b - 12 * q;
+      if (d2 >= 0) {
+        const double sq = std::sqrt(d2);
+        for (double x2 : {(b + sq) / 6, (b - sq) / 6})
+          if (x2 > 0) addT((aa - std::sqrt(x2)) * c.iJ);
+      }
+      for (double A : {c.acc, c.dec}) {
+        const double d3 = A * A + 16 * c.J * vn;
+        if (d3 >= 0) {
+          const double sq = std::sqrt(d3);
+          addT((aa - (A + sq) * 0.25) * c.iJ);
+          addT((aa - (A - sq) * 0.25) * c.iJ);
+        }
+      }
+    }
+    tb[nt++] = tm;
+    // fe: the value at a point, fl: the limit from the left (differs at tCross)
+    double fe[16], fl[16], Te[16];
+    for (int i = 0; i < nt; ++i) {
+      fe[i] = fl[i] = E.f(tb[i], &Te[i]);
+      if (tb[i] == tCross) fl[i] = E.f(std::nextafter(tb[i], 0.0));
+      if (fe[i] == 0 && Te[i] < bestT) { bestT = Te[i]; eased = true; bestTe = tb[i]; }
+    }
+    auto fn = [&E](double x, double* T, double* mag, int) { return E.f(x, T, mag); };
+    for (int i = 0; i + 1 < nt; ++i) {
+      if ((fe[i] < 0 && fl[i + 1] > 0) || (fe[i] > 0 && fl[i + 1] < 0)) {
+        const double x = solveRootOn(fn, tb[i], fe[i], tb[i + 1], fl[i + 1], 0);
+        double T = std::numeric_limits<double>::infinity(), mag = 0;
+        const double fx = E.f(x, &T, &mag);
+        if (std::fabs(fx) <= 1e-10 * mag && T < bestT) { bestT = T; eased = true; bestTe = x; }
+      }
+    }
+    if (eased) {
+      Trans r;
+      E.f(bestTe, nullptr, nullptr, &r);
+      out.clear(start);
+      if (bestTe > 0) out.push(bestTe, -g * c.J);
+      pushTrans(out, r, true);
+      out.finish({target, vEnd, 0.0});
+      return PlanStatus::Ok;
+    }
+  }
+
+  Trans r1, r2;
+  trans(P.v0, P.a0, bestVp, c, r1, 0, bestZs);
+  trans(bestVp, 0, vEnd, c, r2, bestZs, 0);
+  out.clear(start);
+  pushTrans(out, r1, c.jerkMode);
+  out.snap(bestVp, 0.0);
+  if (bestTc > 0) {
+    if (c.jerkMode) out.push(bestTc, 0.0);
+    else out.pushAcc(bestTc, 0.0);
+  }
+  pushTrans(out, r2, c.jerkMode);
+  out.finish({target, vEnd, 0.0});
+  return PlanStatus::Ok;
+}
+
+
 inline bool closeTo(double a, double b) {
   return std::isfinite(b) && std::fabs(a - b) <= 1e-12 * std::max(1.0, std::fabs(b));
 }
@@ -263,7 +535,7 @@ inline bool closeTo(double a, double b) {
 inline PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd, const Limits& lim) {
   n_ = 0;
   wait_ = false;
-  const PlanStatus st = planPosition(start, target, vEnd, lim, opt_);
+  const PlanStatus st = oldPlanPosition(start, target, vEnd, lim, opt_);
   if (st != PlanStatus::Ok) return st;
   lim_ = lim;
   start_ = start;
@@ -594,7 +866,7 @@ inline SyncResult planSynchronized(const SyncAxis* axes, int n, Profile* out) {
     rest[i] = restLike(a);
     PlanStatus st;
     if (rest[i]) {
-      st = planPosition(a.start, a.target, a.vEnd, a.lim, out[i]);
+      st = oldPlanPosition(a.start, a.target, a.vEnd, a.lim, out[i]);
       tMin[i] = out[i].duration();
     } else {
       st = fams.make(i, a);
@@ -614,7 +886,7 @@ inline SyncResult planSynchronized(const SyncAxis* axes, int n, Profile* out) {
   auto planAxis = [&](int i, double T) {
     if (!rest[i]) return fams[i].plan(T, out[i]);
     if (closeTo(T, tMin[i])) {
-      if (!optIn[i]) planPosition(axes[i].start, axes[i].target, axes[i].vEnd, axes[i].lim, out[i]);
+      if (!optIn[i]) oldPlanPosition(axes[i].start, axes[i].target, axes[i].vEnd, axes[i].lim, out[i]);
       optIn[i] = true;
       return true;
     }
@@ -661,7 +933,7 @@ inline SyncResult planSynchronized(const SyncAxis* axes, int n, Profile* out) {
       if (!all) {   // (not seen in the tests) the optimal plans, not synchronised
         T = 0;
         for (int i = 0; i < n; ++i) {
-          if (rest[i]) planPosition(axes[i].start, axes[i].target, axes[i].vEnd, axes[i].lim, out[i]);
+          if (rest[i]) oldPlanPosition(axes[i].start, axes[i].target, axes[i].vEnd, axes[i].lim, out[i]);
           else out[i] = fams[i].optimal();
           T = std::max(T, tMin[i]);
         }

@@ -106,6 +106,39 @@ std::string sameProfile(const Profile& p, const Profile& q) {
   return "";
 }
 
+bool bitwise(const Profile& p, const Profile& q) {
+  auto same = [](double x, double y) { return x == y || (std::isnan(x) && std::isnan(y)); };
+  auto sameK = [&](const Kinematic& a, const Kinematic& b) { return same(a.p, b.p) && same(a.v, b.v) && same(a.a, b.a); };
+  if (p.segmentCount() != q.segmentCount() || !same(p.duration(), q.duration()) || !sameK(p.start(), q.start()) ||
+      !sameK(p.end(), q.end()))
+    return false;
+  for (int s = 0; s < p.segmentCount(); ++s) {
+    const auto &x = p.segment(s), &y = q.segment(s);
+    if (!same(x.t0, y.t0) || !same(x.p, y.p) || !same(x.v, y.v) || !same(x.a, y.a) || !same(x.j, y.j) ||
+        !same(x.dur, y.dur))
+      return false;
+  }
+  return true;
+}
+
+// the largest difference of p and q's segment times and states, each relative to max(1, |q's|)
+double profileDiff(const Profile& p, const Profile& q) {
+  if (p.segmentCount() != q.segmentCount()) return kInf;
+  auto d = [](double x, double y) { return std::fabs(x - y) / std::max(1.0, std::fabs(y)); };
+  double m = d(p.duration(), q.duration());
+  for (int s = 0; s < p.segmentCount(); ++s) {
+    const auto &x = p.segment(s), &y = q.segment(s);
+    m = std::max({m, d(x.t0, y.t0), d(x.p, y.p), d(x.v, y.v), d(x.a, y.a), d(x.j, y.j), d(x.dur, y.dur)});
+  }
+  return m;
+}
+
+std::string num(double x) {
+  std::ostringstream os;
+  os << std::setprecision(17) << x;
+  return os.str();
+}
+
 std::string describe(const SyncAxis* ax, int n) {
   std::ostringstream os;
   os << std::scientific << std::setprecision(17);
@@ -123,8 +156,8 @@ std::string describe(const SyncAxis* ax, int n) {
 // (1e-9 s) and, on every axis, the same profile as the previous planner.
 TEST(SyncPlanLegacy, SameAsPreviousPlanner) {
   Rng r(0x51c6a11e);
-  uint64_t failures = 0, bitwise = 0;
-  double maxDT = 0;
+  uint64_t failures = 0, bitwiseT = 0, profiles = 0, bitwiseProfiles = 0;
+  double maxDT = 0, maxDiff = 0;
   constexpr int kBroad = 150000, kBench = 50000;
   for (int k = 0; k < kBroad + kBench; ++k) {
     const bool bench = k >= kBroad;
@@ -137,12 +170,15 @@ TEST(SyncPlanLegacy, SameAsPreviousPlanner) {
     std::string err;
     const double dT = std::fabs(a.duration - b.duration);
     maxDT = std::max(maxDT, dT);
-    if (a.duration == b.duration) ++bitwise;
+    if (a.duration == b.duration) ++bitwiseT;
     if (a.status != b.status || a.axis != b.axis) err = "status";
     else if (dT > 1e-9) err = "duration";
     for (int i = 0; i < n && err.empty(); ++i) {
       const std::string e = sameProfile(out[i], ref[i]);
       if (!e.empty()) err = "axis " + std::to_string(i) + ": " + e;
+      ++profiles;
+      if (bitwise(out[i], ref[i])) ++bitwiseProfiles;
+      maxDiff = std::max(maxDiff, profileDiff(out[i], ref[i]));
     }
     if (!err.empty() && ++failures <= 10) {
       std::ostringstream os;
@@ -152,8 +188,10 @@ TEST(SyncPlanLegacy, SameAsPreviousPlanner) {
     }
   }
   EXPECT_EQ(failures, 0u);
-  std::printf("sync vs previous planner: %d sets, durations bitwise equal %llu, max |dT| %.3g s\n", kBroad + kBench,
-              (unsigned long long)bitwise, maxDT);
+  std::printf("sync vs previous planner: %d sets, durations bitwise equal %llu, max |dT| %.3g s, profiles bitwise "
+              "equal %llu of %llu, largest segment difference %.3g\n",
+              kBroad + kBench, (unsigned long long)bitwiseT, maxDT, (unsigned long long)bitwiseProfiles,
+              (unsigned long long)profiles, maxDiff);
 }
 
 // 100,000 single axes: TimedFamily answers as the previous one: the same minimum
@@ -161,7 +199,8 @@ TEST(SyncPlanLegacy, SameAsPreviousPlanner) {
 // each start, at times just around them and at random times beyond the minimum.
 TEST(SyncPlanLegacy, FamilySameAsPrevious) {
   Rng r(0xfa3111e5);
-  uint64_t failures = 0, plans = 0;
+  uint64_t failures = 0, plans = 0, bitwisePlans = 0;
+  double maxDiff = 0;
   constexpr int kCases = 100000;
   for (int k = 0; k < kCases; ++k) {
     const SyncAxis a = k % 4 == 3 ? benchAxis(r) : broadAxis(r);
@@ -195,21 +234,50 @@ TEST(SyncPlanLegacy, FamilySameAsPrevious) {
       for (int i = 0; i < nt && err.empty(); ++i) {
         const double T = ts[i];
         if (f.feasible(T) != g.feasible(T)) {
-          err = "feasible at " + std::to_string(T);
+          err = "feasible at " + num(T);
           break;
         }
         Profile p, q;
         const bool okf = f.plan(T, p), okg = g.plan(T, q);
-        if (okf != okg) err = "plan found at " + std::to_string(T);
+        if (okf != okg) err = "plan found at " + num(T) + (okf ? " (new only)" : " (old only)");
         else if (okf) {
           ++plans;
+          if (bitwise(p, q)) ++bitwisePlans;
+          maxDiff = std::max(maxDiff, profileDiff(p, q));
           const std::string e = sameProfile(p, q);
-          if (!e.empty()) err = "plan at " + std::to_string(T) + ": " + e;
+          if (!e.empty()) err = "plan at " + num(T) + ": " + e;
         }
       }
     }
     if (!err.empty() && ++failures <= 10) ADD_FAILURE() << "case " << k << ": " << err << describe(&a, 1);
   }
-  EXPECT_EQ(failures, 0u);
-  std::printf("family vs previous: %d axes, %llu plans compared\n", kCases, (unsigned long long)plans);
+  EXPECT_EQ(failures, 0u) << failures << " failures";
+  std::printf("family vs previous: %d axes, %llu plans compared, %llu bitwise equal, largest segment difference %.3g\n",
+              kCases, (unsigned long long)plans, (unsigned long long)bitwisePlans, maxDiff);
+}
+
+// 1,000,000 one-axis position plans and as many velocity plans (the whole input
+// space, the benchmark's states, rest to rest): bit for bit the plans of the
+// previous one-axis planner (its arithmetic is unchanged; only the way segments
+// are appended and what TimedFamily takes from planPosition changed).
+TEST(SyncPlanLegacy, OneAxisPlansBitwiseAsBefore) {
+  Rng r(0x0e1a7e57);
+  uint64_t failures = 0;
+  constexpr int kCases = 1000000;
+  for (int k = 0; k < kCases; ++k) {
+    SyncAxis a = k % 4 == 3 ? benchAxis(r) : broadAxis(r);
+    if (k % 8 == 5) {   // rest to rest (the closed forms)
+      a.start.v = a.start.a = a.vEnd = 0;
+    }
+    Profile p, q;
+    const PlanStatus s1 = planPosition(a.start, a.target, a.vEnd, a.lim, p);
+    const PlanStatus s2 = legacy::oldPlanPosition(a.start, a.target, a.vEnd, a.lim, q);
+    std::string err;
+    if (s1 != s2 || !bitwise(p, q)) err = "position plan";
+    const PlanStatus s3 = planVelocity(a.start, a.vEnd, a.lim, p);
+    const PlanStatus s4 = legacy::oldPlanVelocity(a.start, a.vEnd, a.lim, q);
+    if (err.empty() && (s3 != s4 || !bitwise(p, q))) err = "velocity plan";
+    if (!err.empty() && ++failures <= 10) ADD_FAILURE() << "case " << k << ": " << err << describe(&a, 1);
+  }
+  EXPECT_EQ(failures, 0u) << failures << " failures";
 }
