@@ -212,31 +212,38 @@ SyncResult planSynchronized(const SyncAxis* axes, int n, Profile* out) {
     if (!fams.has(i)) fams.make(i, axes[i]);
     return fams[i].plan(T, out[i]);
   };
-  // Every axis without a family accepts every T >= tLow.  When no family has a
-  // start after tLow, tLow is the only candidate (rest-to-rest sets).
-  constexpr int kCap = kMaxSyncAxes * (detail::TimedFamily::kMaxPoints + 2) + 1;
-  double cand[kCap];
-  int nc = 0;
-  cand[nc++] = tLow;
-  for (int i = 0; i < n && nFam > 0; ++i) {
-    if (rest[i]) continue;
-    double s[detail::TimedFamily::kMaxPoints + 2];
-    const int k = fams[i].starts(s, detail::TimedFamily::kMaxPoints + 2);
-    for (int j = 0; j < k; ++j)
-      if (s[j] > tLow && nc < kCap) cand[nc++] = s[j];
-  }
-  if (nc > 1) std::sort(cand, cand + nc);
-  // the first candidate at which every axis has a plan (cheap test first)
-  double T = cand[nc - 1];
-  for (int c = 0; c < nc; ++c) {
+  // every axis' plan of duration t (the cheap test first)
+  auto allAt = [&](double t) {
     bool all = true;
-    for (int i = 0; i < n && all; ++i) all = rest[i] || fams[i].feasible(cand[c]);
-    for (int i = 0; i < n && all; ++i) all = planAxis(i, cand[c]);
-    if (all) {
-      T = cand[c];
-      break;
+    for (int i = 0; i < n && all; ++i) all = rest[i] || fams[i].feasible(t);
+    for (int i = 0; i < n && all; ++i) all = planAxis(i, t);
+    return all;
+  };
+  // The candidates are tLow and, after it, the starts of the families' feasible
+  // intervals; the first at which every axis has a plan is T.  tLow is tried
+  // first, before the others are collected: it is the answer in most sets (every
+  // axis without a family accepts every T >= tLow; rest-to-rest sets have no
+  // other candidate).
+  double T = tLow;
+  if (!allAt(tLow)) {
+    constexpr int kCap = kMaxSyncAxes * (detail::TimedFamily::kMaxPoints + 2) + 1;
+    double cand[kCap];
+    int nc = 0;
+    cand[nc++] = tLow;
+    for (int i = 0; i < n && nFam > 0; ++i) {
+      if (rest[i]) continue;
+      double s[detail::TimedFamily::kMaxPoints + 2];
+      const int k = fams[i].starts(s, detail::TimedFamily::kMaxPoints + 2);
+      for (int j = 0; j < k; ++j)
+        if (s[j] > tLow && nc < kCap) cand[nc++] = s[j];
     }
-    if (c == nc - 1) {
+    if (nc > 1) std::sort(cand, cand + nc);
+    bool all = false;
+    for (int c = 1; c < nc && !all; ++c) {
+      all = allAt(cand[c]);
+      if (all) T = cand[c];
+    }
+    if (!all) {
       // G(vp) is not monotone on every piece, so an interval may begin between
       // the candidates: go later (every axis' last interval is unbounded)
       double t = cand[nc - 1];

@@ -316,13 +316,29 @@ inline void cruiseEval(const Ctx& c, double v0, double a0, double vEnd, double d
   e.x = x;
   e.mag = (std::fabs(a.D) + std::fabs(b.D) + std::fabs(delta)) + std::fabs(x) * (tr + T);
   e.h = x * (tr - T) - fx;
-  double dT, dD;
+  double dT, dD, d2T = 0, d2D;
   if (c.jerkMode) {
     const double ia = c.iJ / a.dur[2], ib = c.iJ / b.dur[0];   // 1 / ap of each
     dT = a.s * ia - b.s * ib;
     e.dTabs = std::fabs(ia) + std::fabs(ib);
     dD = (a.s * x * ia + 0.5 * a.dur[2]) + (0.5 * b.dur[0] - b.s * x * ib);
-    e.quad = a.dur[1] > 0 && b.dur[1] > 0;
+    // second derivatives: with a plateau ap is fixed (T'' = 0, D1'' = s / A,
+    // D2'' = -s / A); a triangle's ap = sqrt(J |x - x0| + ...) moves with x:
+    // T'' = -J / (2 ap^3), D1'' = 5 s / (4 ap) - x J / (2 ap^3), D2'' = -5 s / (4 ap) - x J / (2 ap^3)
+    const bool triA = !a.over && !(a.dur[1] > 0), triB = !(b.dur[1] > 0);
+    d2D = triA ? 1.25 * a.s * ia : a.s * ia;
+    d2D -= triB ? 1.25 * b.s * ib : b.s * ib;
+    if (triA) {
+      const double k = -0.5 * c.J * ia * ia * ia;
+      d2T += k;
+      d2D += x * k;
+    }
+    if (triB) {
+      const double k = -0.5 * c.J * ib * ib * ib;
+      d2T += k;
+      d2D += x * k;
+    }
+    e.quad = !triA && !triB;
   } else {
     // ramps at the accelerations val[]: T1 = (x - v0) / val, D1 = (x^2 - v0^2) / (2 val), and
     // crossing 0: T1 = |v0| / dec + x / val[1], D1 = (v0 t1 + x t2) / 2; likewise out of x
@@ -333,11 +349,12 @@ inline void cruiseEval(const Ctx& c, double v0, double a0, double vEnd, double d
     else if (b.n == 2) { dT2 = -1 / b.val[0]; dD2 = 0.5 * (b.dur[0] + x * dT2); }
     dT = dT1 + dT2;
     dD = dD1 + dD2;
+    d2D = dT;   // (D1'' = 1 / val = T1', likewise D2'')
     e.dTabs = std::fabs(dT1) + std::fabs(dT2);
     e.quad = true;
   }
   e.dh = (tr - T) + x * dT - dD;
-  e.d2h = dT;
+  e.d2h = 2 * dT + x * d2T - d2D;
 }
 
 // A root of h on (lo, hi), h(lo) and h(hi) of opposite signs (neither 0): steps
@@ -359,9 +376,9 @@ inline bool cruiseRoot(const Ctx& c, double v0, double a0, double vEnd, double d
     if (std::fabs(e.h) <= 4e-16 * e.mag) return true;
     if ((e.h < 0) == (ha < 0)) { xa = x; ha = e.h; }
     else { xb = x; hb = e.h; }
-    // the model's step
+    // the model's step (the root of the local quadratic, exact if e.quad)
     double d = std::numeric_limits<double>::quiet_NaN();
-    if (e.quad && e.d2h != 0) {
+    if (e.d2h != 0) {
       const double disc = e.dh * e.dh - 2 * e.d2h * e.h;
       if (disc >= 0) d = -2 * e.h / (e.dh + std::copysign(std::sqrt(disc), e.dh));   // (the smaller root)
     }
@@ -528,6 +545,8 @@ namespace {
 // filled (valid false) for the closed-form rest-to-rest plans.
 struct PosScan {
   bool valid = false;
+  Ctx c;          // makeCtx(lim)
+  double vnat;    // the velocity at which ramping a0 out ends
   int nb = 0, nr = 0;
   double bp[8], fv[8], Tv[8];
   int zs[8];
@@ -636,6 +655,8 @@ PlanStatus planPositionImpl(const Kinematic& start, double target, double vEnd, 
   }
   if (scan) {
     scan->valid = true;
+    scan->c = c;
+    scan->vnat = vnat;
     scan->nb = nb;
     for (int i = 0; i < nb; ++i) {
       scan->bp[i] = bp[i]; scan->zs[i] = zs[i]; scan->fv[i] = fv[i]; scan->Tv[i] = Tv[i];
@@ -750,13 +771,13 @@ PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd,
   target_ = target;
   vEnd_ = vEnd;
   PosProblem P;
-  P.c = c_ = makeCtx(lim);
+  P.c = c_ = scan.valid ? scan.c : makeCtx(lim);
   P.v0 = v0_ = start.v;
   P.a0 = a0_ = P.c.jerkMode ? start.a : 0.0;
   P.vEnd = vEnd;
   P.delta = delta_ = target - start.p;
   const double vel = P.c.vel;
-  const double vnat = P.c.jerkMode ? P.v0 + P.a0 * std::fabs(P.a0) / (2 * P.c.J) : P.v0;
+  const double vnat = scan.valid ? scan.vnat : P.c.jerkMode ? P.v0 + P.a0 * std::fabs(P.a0) / (2 * P.c.J) : P.v0;
   // points: the breakpoints of vp (as in planPosition), then the roots of D = delta
   // (x, side) with its D - delta and transition time, into the sorted points
   auto addKnown = [&](double x, int side, double f, double tt) {
