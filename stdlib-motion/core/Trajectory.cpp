@@ -157,17 +157,24 @@ inline void trans(double u, double a0, double w, const Ctx& c, Trans& r, int uz 
 
 void pushTrans(Profile& out, const Trans& r, bool jerkMode) { out.pushSegments(r.dur, r.val, r.n, !jerkMode); }
 
-// The plan of the peak-velocity shape: transition r1 into vp, (snapped to vp, a = 0)
-// cruise for tc (if > 0), transition r2; as pushTrans(r1), snap(vp, 0), push(tc, 0),
-// pushTrans(r2) (trapezoidal mode: pushAcc).
-void pushPeakPlan(Profile& out, const Trans& r1, double vp, double tc, const Trans& r2, bool jerkMode) {
-  double dur[7], val[7];
+// The segments of a plan of the peak-velocity shape: transition r1 into vp,
+// (snapped to vp, a = 0) cruise for tc (if > 0), transition r2; as pushTrans(r1),
+// snap(vp, 0), push(tc, 0), pushTrans(r2) (trapezoidal mode: pushAcc).
+void peakSegs(const Trans& r1, double vp, double tc, const Trans& r2, bool jerkMode, detail::PlanSegs& sg) {
   int n = 0;
-  for (int i = 0; i < r1.n; ++i) { dur[n] = r1.dur[i]; val[n++] = r1.val[i]; }
-  const int snapAt = n;
-  dur[n] = tc; val[n++] = 0.0;
-  for (int i = 0; i < r2.n; ++i) { dur[n] = r2.dur[i]; val[n++] = r2.val[i]; }
-  out.pushSegments(dur, val, n, !jerkMode, snapAt, vp);
+  for (int i = 0; i < r1.n; ++i) { sg.dur[n] = r1.dur[i]; sg.val[n++] = r1.val[i]; }
+  sg.snapAt = n;
+  sg.snapV = vp;
+  sg.dur[n] = tc; sg.val[n++] = 0.0;
+  for (int i = 0; i < r2.n; ++i) { sg.dur[n] = r2.dur[i]; sg.val[n++] = r2.val[i]; }
+  sg.n = n;
+  sg.acc = !jerkMode;
+}
+
+void pushPeakPlan(Profile& out, const Trans& r1, double vp, double tc, const Trans& r2, bool jerkMode) {
+  detail::PlanSegs sg;
+  peakSegs(r1, vp, tc, r2, jerkMode, sg);
+  out.pushSegments(sg.dur, sg.val, sg.n, sg.acc, sg.snapAt, sg.snapV);
 }
 
 inline bool finite(double x) { return std::isfinite(x); }
@@ -544,6 +551,10 @@ namespace {
 // of D = delta between them with D - delta and the time at the root.  Not
 // filled (valid false) for the closed-form rest-to-rest plans.
 struct PosScan {
+  bool defer = false;   // (in) describe the optimal plan in segs (and duration), do not build it
+  bool deferred = false;
+  detail::PlanSegs segs;
+  double duration = 0;
   bool valid = false;
   Ctx c;          // makeCtx(lim)
   double vnat;    // the velocity at which ramping a0 out ends
@@ -556,6 +567,22 @@ struct PosScan {
 
 PlanStatus planPositionImpl(const Kinematic& start, double target, double vEnd, const Limits& lim, Profile& out,
                             PosScan* scan);
+
+// The optimal plan found: built into out, or (scan->defer) described in scan with
+// the duration the Profile would have (the same sum in the same order).
+void finishPlan(const Kinematic& start, const detail::PlanSegs& sg, Profile& out, PosScan* scan) {
+  if (scan && scan->defer) {
+    scan->deferred = true;
+    scan->segs = sg;
+    double t = 0;
+    int k = 0;
+    for (int i = 0; i < sg.n; ++i)
+      if (sg.dur[i] > 0 && k < Profile::kMaxSegments) { t += sg.dur[i]; ++k; }
+    scan->duration = t;
+    return;
+  }
+  sg.build(start, out);
+}
 
 }  // namespace
 
@@ -735,11 +762,13 @@ PlanStatus planPositionImpl(const Kinematic& start, double target, double vEnd, 
     if (eased) {
       Trans r;
       E.f(bestTe, nullptr, nullptr, &r);
-      out.clear(start);
-      double dur[4] = {bestTe}, val[4] = {-g * c.J};
-      for (int i = 0; i < r.n; ++i) { dur[1 + i] = r.dur[i]; val[1 + i] = r.val[i]; }
-      out.pushSegments(dur, val, 1 + r.n, false);
-      out.finish({target, vEnd, 0.0});
+      detail::PlanSegs sg;
+      sg.dur[0] = bestTe;
+      sg.val[0] = -g * c.J;
+      for (int i = 0; i < r.n; ++i) { sg.dur[1 + i] = r.dur[i]; sg.val[1 + i] = r.val[i]; }
+      sg.n = 1 + r.n;
+      sg.end = {target, vEnd, 0.0};
+      finishPlan(start, sg, out, scan);
       return PlanStatus::Ok;
     }
   }
@@ -747,9 +776,10 @@ PlanStatus planPositionImpl(const Kinematic& start, double target, double vEnd, 
   Trans r1, r2;
   trans(P.v0, P.a0, bestVp, c, r1, 0, bestZs);
   trans(bestVp, 0, vEnd, c, r2, bestZs, 0);
-  out.clear(start);
-  pushPeakPlan(out, r1, bestVp, bestTc, r2, c.jerkMode);
-  out.finish({target, vEnd, 0.0});
+  detail::PlanSegs sg;
+  peakSegs(r1, bestVp, bestTc, r2, c.jerkMode, sg);
+  sg.end = {target, vEnd, 0.0};
+  finishPlan(start, sg, out, scan);
   return PlanStatus::Ok;
 }
 
@@ -765,7 +795,15 @@ PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd,
   n_ = 0;
   wait_ = false;
   PosScan scan;
+  scan.defer = true;
   const PlanStatus st = planPositionImpl(start, target, vEnd, lim, opt_, &scan);
+  optBuilt_ = !scan.deferred;   // (else opt_ holds the plan: the closed forms, an invalid input)
+  if (scan.deferred) {
+    optSegs_ = scan.segs;
+    tMin_ = scan.duration;
+  } else {
+    tMin_ = opt_.duration();
+  }
   if (st != PlanStatus::Ok) return st;
   start_ = start;
   target_ = target;
@@ -802,7 +840,8 @@ PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd,
     // rest to rest: the durations are [minimum, inf), cruising at 0 < |vp| <= the
     // optimal peak (G falls from inf to the minimum there)
     double peak = 0;
-    for (int i = 0; i < opt_.segmentCount(); ++i) peak = std::max(peak, std::fabs(opt_.segment(i).v));
+    const Profile& opt = optimal();
+    for (int i = 0; i < opt.segmentCount(); ++i) peak = std::max(peak, std::fabs(opt.segment(i).v));
     const double dir = delta_ > 0 ? 1.0 : -1.0;
     if (dir > 0) { add(0.0, 1); add(peak, 0); }
     else { add(-peak, 0); add(0.0, -1); }
@@ -893,9 +932,18 @@ bool TimedFamily::feasible(double T) const {
   return false;
 }
 
+const Profile& TimedFamily::optimal() const {
+  if (!optBuilt_) {
+    optSegs_.build(start_, opt_);
+    optBuilt_ = true;
+  }
+  return opt_;
+}
+
 bool TimedFamily::plan(double T, Profile& out) const {
   if (closeTo(T, minimum())) {
-    out = opt_;
+    if (optBuilt_) out = opt_;
+    else optSegs_.build(start_, out);
     return true;
   }
   PosProblem P;
