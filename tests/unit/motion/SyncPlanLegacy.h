@@ -944,5 +944,87 @@ inline SyncResult planSynchronized(const SyncAxis* axes, int n, Profile* out) {
   return res;
 }
 
+
+inline PlanStatus checkAxis(const SyncAxis& a) {
+  const Limits& l = a.lim;
+  auto pos = [](double x) { return std::isfinite(x) && x > 0; };
+  if (!pos(l.vel) || !pos(l.acc) || !pos(l.dec) || std::isnan(l.jerk) || l.jerk < 0) return PlanStatus::InvalidLimits;
+  if (!std::isfinite(a.start.p) || !std::isfinite(a.start.v) || !std::isfinite(a.start.a)) return PlanStatus::InvalidState;
+  return PlanStatus::Ok;
+}
+
+inline SyncResult oldPlanPhaseSynchronized(const SyncAxis* axes, int n, Profile* out) {
+  SyncResult res;
+  if (n < 1 || n > kMaxSyncAxes) {
+    res.status = SyncStatus::BadAxisCount;
+    if (n > 0) holdAll(axes, std::min(n, kMaxSyncAxes), out);
+    return res;
+  }
+  // validate each axis as the one-axis planner does
+  Limits path{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+              std::numeric_limits<double>::infinity(), 0};
+  double jerkBound = std::numeric_limits<double>::infinity();
+  bool anyTrap = false, anyMove = false;
+  for (int i = 0; i < n; ++i) {
+    const SyncAxis& a = axes[i];
+    const PlanStatus st = checkAxis(a);
+    PlanStatus st2 = PlanStatus::Ok;
+    if (st == PlanStatus::Ok && (!std::isfinite(a.target) || !std::isfinite(a.vEnd))) st2 = PlanStatus::InvalidTarget;
+    if (st != PlanStatus::Ok || st2 != PlanStatus::Ok) {
+      res.status = fromPlan(st != PlanStatus::Ok ? st : st2);
+      res.axis = i;
+      holdAll(axes, n, out);
+      return res;
+    }
+    if (a.start.v != 0 || a.start.a != 0 || a.vEnd != 0) {
+      res.status = SyncStatus::NotAtRest;
+      res.axis = i;
+      holdAll(axes, n, out);
+      return res;
+    }
+    const double d = std::fabs(a.target - a.start.p);
+    if (d == 0) continue;
+    anyMove = true;
+    path.vel = std::min(path.vel, a.lim.vel / d);
+    path.acc = std::min(path.acc, a.lim.acc / d);
+    path.dec = std::min(path.dec, a.lim.dec / d);
+    const bool jerkMode = a.lim.jerk > 0 && std::isfinite(a.lim.jerk);
+    if (jerkMode) jerkBound = std::min(jerkBound, a.lim.jerk / d);
+    else anyTrap = true;
+  }
+  if (!anyMove) {
+    holdAll(axes, n, out);
+    return res;
+  }
+  // an axis without a jerk limit does not constrain the path's jerk; the path is
+  // jerk-limited if any axis is (an axis with jerk 0 accepts any jerk)
+  (void)anyTrap;
+  path.jerk = std::isfinite(jerkBound) ? jerkBound : 0;
+  Profile s;
+  if (oldPlanPosition({0, 0, 0}, 1, 0, path, s) != PlanStatus::Ok) {
+    res.status = SyncStatus::InvalidLimits;   // (scaled limits out of range)
+    holdAll(axes, n, out);
+    return res;
+  }
+  const bool jerkMode = path.jerk > 0;
+  for (int i = 0; i < n; ++i) {
+    const SyncAxis& a = axes[i];
+    const double d = a.target - a.start.p;
+    Profile& o = out[i];
+    o.clear(a.start);
+    for (int k = 0; k < s.segmentCount(); ++k) {
+      const Profile::Segment& g = s.segment(k);
+      if (jerkMode) o.push(g.dur, g.j * d);
+      else o.pushAcc(g.dur, g.a * d);
+    }
+    if (d != 0) o.finish({a.target, 0, 0});
+    else {
+      o.finish(a.start);
+    }
+  }
+  res.duration = s.duration();
+  return res;
+}
+
 }  // namespace
 }  // namespace stc::motion::legacy

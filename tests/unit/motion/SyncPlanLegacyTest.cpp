@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <iomanip>
 #include <limits>
 #include <random>
@@ -90,6 +91,12 @@ SyncAxis benchAxis(Rng& r) {
   return a;
 }
 
+// STC_TRAJ_SEED=n explores other random cases (the default run is fixed)
+uint64_t seed(uint64_t fixed) {
+  if (const char* e = std::getenv("STC_TRAJ_SEED")) return std::strtoull(e, nullptr, 10) * 0x9e3779b97f4a7c15ull + fixed;
+  return fixed;
+}
+
 bool near(double x, double y) { return std::fabs(x - y) <= 1e-9 * std::max(1.0, std::fabs(y)); }
 
 // "" if p and q are the same profile (segments, jerks, times and states to 1e-9)
@@ -133,6 +140,32 @@ double profileDiff(const Profile& p, const Profile& q) {
   return m;
 }
 
+// "" if p is a plan of axis a lasting T: from its start, continuous from segment
+// to segment (each integrated over its duration), ending exactly at (target, vEnd, 0)
+std::string checkPlan(const SyncAxis& a, const Profile& p, double T) {
+  if (std::fabs(p.duration() - T) > 1e-9 * std::max(1.0, T)) return "duration";
+  const Kinematic &s = p.start(), &e = p.end();
+  if (s.p != a.start.p || s.v != a.start.v || s.a != a.start.a) return "start";
+  if (e.p != a.target || e.v != a.vEnd || e.a != 0) return "end";
+  double sp = std::max({1.0, std::fabs(a.start.p), std::fabs(a.target)});
+  for (int i = 0; i < p.segmentCount(); ++i) sp = std::max(sp, std::fabs(p.segment(i).p));
+  const double sv = std::max({1.0, a.lim.vel, std::fabs(a.start.v)});
+  const double sa = std::max({1.0, a.lim.acc, a.lim.dec, std::fabs(a.start.a)});
+  for (int i = 0; i < p.segmentCount(); ++i) {
+    const auto& g = p.segment(i);
+    const double t = g.dur;
+    const double pe = g.p + t * (g.v + t * (g.a * 0.5 + t * g.j / 6)), ve = g.v + t * (g.a + t * g.j * 0.5),
+                 ae = g.a + t * g.j;
+    const bool last = i + 1 == p.segmentCount();
+    const Kinematic n = last ? e : Kinematic{p.segment(i + 1).p, p.segment(i + 1).v, p.segment(i + 1).a};
+    // (trapezoidal plans may jump in acceleration)
+    const bool jumps = !(a.lim.jerk > 0 && std::isfinite(a.lim.jerk));
+    if (std::fabs(pe - n.p) > 1e-9 * sp || std::fabs(ve - n.v) > 1e-9 * sv || (!jumps && std::fabs(ae - n.a) > 1e-9 * sa))
+      return "segment " + std::to_string(i) + " does not continue into the next";
+  }
+  return "";
+}
+
 std::string num(double x) {
   std::ostringstream os;
   os << std::setprecision(17) << x;
@@ -154,9 +187,13 @@ std::string describe(const SyncAxis* ax, int n) {
 // 200,000 random sets (150,000 from the whole input space with 1..16 axes, most
 // 2..6; 50,000 of 6 axes as in the benchmark): the same status, common duration
 // (1e-9 s) and, on every axis, the same profile as the previous planner.
+// Exception (none with the default seed; one in 1,600,000 sets over eight other
+// seeds): an earlier T where the previous planner's cruise solve did not converge
+// on some axis at a candidate and the new one does; the new T must then be no
+// earlier than every axis' minimum and every profile a valid plan lasting it.
 TEST(SyncPlanLegacy, SameAsPreviousPlanner) {
-  Rng r(0x51c6a11e);
-  uint64_t failures = 0, bitwiseT = 0, profiles = 0, bitwiseProfiles = 0;
+  Rng r(seed(0x51c6a11e));
+  uint64_t failures = 0, earlier = 0, bitwiseT = 0, profiles = 0, bitwiseProfiles = 0;
   double maxDT = 0, maxDiff = 0;
   constexpr int kBroad = 150000, kBench = 50000;
   for (int k = 0; k < kBroad + kBench; ++k) {
@@ -172,7 +209,24 @@ TEST(SyncPlanLegacy, SameAsPreviousPlanner) {
     maxDT = std::max(maxDT, dT);
     if (a.duration == b.duration) ++bitwiseT;
     if (a.status != b.status || a.axis != b.axis) err = "status";
-    else if (dT > 1e-9) err = "duration";
+    else if (dT > 1e-9 && a.duration < b.duration) {
+      double tMin = 0;
+      for (int i = 0; i < n; ++i) {
+        Profile opt;
+        planPosition(ax[i].start, ax[i].target, ax[i].vEnd, ax[i].lim, opt);
+        tMin = std::max(tMin, opt.duration());
+      }
+      if (a.duration < tMin * (1 - 1e-12)) err = "T below an axis' minimum";
+      for (int i = 0; i < n && err.empty(); ++i) {
+        const std::string e = checkPlan(ax[i], out[i], a.duration);
+        if (!e.empty()) err = "earlier T, axis " + std::to_string(i) + ": " + e;
+      }
+      if (err.empty()) {
+        ++earlier;
+        std::printf("case %d: T %.17g, the previous planner %.17g\n", k, a.duration, b.duration);
+        continue;
+      }
+    } else if (dT > 1e-9) err = "duration";
     for (int i = 0; i < n && err.empty(); ++i) {
       const std::string e = sameProfile(out[i], ref[i]);
       if (!e.empty()) err = "axis " + std::to_string(i) + ": " + e;
@@ -188,18 +242,20 @@ TEST(SyncPlanLegacy, SameAsPreviousPlanner) {
     }
   }
   EXPECT_EQ(failures, 0u);
-  std::printf("sync vs previous planner: %d sets, durations bitwise equal %llu, max |dT| %.3g s, profiles bitwise "
-              "equal %llu of %llu, largest segment difference %.3g\n",
-              kBroad + kBench, (unsigned long long)bitwiseT, maxDT, (unsigned long long)bitwiseProfiles,
-              (unsigned long long)profiles, maxDiff);
+  EXPECT_LE(earlier, 2u);
+  std::printf("sync vs previous planner: %d sets, durations bitwise equal %llu, earlier (valid) %llu, profiles "
+              "bitwise equal %llu of %llu, largest segment difference %.3g\n",
+              kBroad + kBench, (unsigned long long)bitwiseT, (unsigned long long)earlier,
+              (unsigned long long)bitwiseProfiles, (unsigned long long)profiles, maxDiff);
 }
 
 // 100,000 single axes: TimedFamily answers as the previous one: the same minimum
 // and optimal plan, the same interval starts, the same feasibility and plan at
-// each start, at times just around them and at random times beyond the minimum.
+// each start, at times just around them and at random times beyond the minimum
+// (or, rarely, a valid plan where the previous cruise solve did not converge).
 TEST(SyncPlanLegacy, FamilySameAsPrevious) {
-  Rng r(0xfa3111e5);
-  uint64_t failures = 0, plans = 0, bitwisePlans = 0;
+  Rng r(seed(0xfa3111e5));
+  uint64_t failures = 0, plans = 0, bitwisePlans = 0, newOnly = 0;
   double maxDiff = 0;
   constexpr int kCases = 100000;
   for (int k = 0; k < kCases; ++k) {
@@ -239,7 +295,11 @@ TEST(SyncPlanLegacy, FamilySameAsPrevious) {
         }
         Profile p, q;
         const bool okf = f.plan(T, p), okg = g.plan(T, q);
-        if (okf != okg) err = "plan found at " + num(T) + (okf ? " (new only)" : " (old only)");
+        if (okf && !okg) {   // (the previous solve did not converge): a valid plan
+          const std::string e = checkPlan(a, p, T);
+          if (!e.empty()) err = "plan found at " + num(T) + " (new only): " + e;
+          else ++newOnly;
+        } else if (okf != okg) err = "plan found at " + num(T) + " (previous only)";
         else if (okf) {
           ++plans;
           if (bitwise(p, q)) ++bitwisePlans;
@@ -252,8 +312,10 @@ TEST(SyncPlanLegacy, FamilySameAsPrevious) {
     if (!err.empty() && ++failures <= 10) ADD_FAILURE() << "case " << k << ": " << err << describe(&a, 1);
   }
   EXPECT_EQ(failures, 0u) << failures << " failures";
-  std::printf("family vs previous: %d axes, %llu plans compared, %llu bitwise equal, largest segment difference %.3g\n",
-              kCases, (unsigned long long)plans, (unsigned long long)bitwisePlans, maxDiff);
+  EXPECT_LE(newOnly, 2u);
+  std::printf("family vs previous: %d axes, %llu plans compared, %llu bitwise equal, largest segment difference %.3g, "
+              "plans only the new solver finds (valid) %llu\n",
+              kCases, (unsigned long long)plans, (unsigned long long)bitwisePlans, maxDiff, (unsigned long long)newOnly);
 }
 
 // 1,000,000 one-axis position plans and as many velocity plans (the whole input
@@ -261,7 +323,7 @@ TEST(SyncPlanLegacy, FamilySameAsPrevious) {
 // previous one-axis planner (its arithmetic is unchanged; only the way segments
 // are appended and what TimedFamily takes from planPosition changed).
 TEST(SyncPlanLegacy, OneAxisPlansBitwiseAsBefore) {
-  Rng r(0x0e1a7e57);
+  Rng r(seed(0x0e1a7e57));
   uint64_t failures = 0;
   constexpr int kCases = 1000000;
   for (int k = 0; k < kCases; ++k) {
@@ -278,6 +340,32 @@ TEST(SyncPlanLegacy, OneAxisPlansBitwiseAsBefore) {
     const PlanStatus s4 = legacy::oldPlanVelocity(a.start, a.vEnd, a.lim, q);
     if (err.empty() && (s3 != s4 || !bitwise(p, q))) err = "velocity plan";
     if (!err.empty() && ++failures <= 10) ADD_FAILURE() << "case " << k << ": " << err << describe(&a, 1);
+  }
+  EXPECT_EQ(failures, 0u) << failures << " failures";
+}
+
+// 100,000 straight-line (phase-synchronised) rest-to-rest sets of 1..16 axes: bit
+// for bit the plans of the previous planner.
+TEST(SyncPlanLegacy, PhaseSynchronizedBitwiseAsBefore) {
+  Rng r(seed(0x9a5e5a3e));
+  uint64_t failures = 0;
+  constexpr int kCases = 100000;
+  for (int k = 0; k < kCases; ++k) {
+    const int n = 1 + int(r.u01() * (r.chance(0.2) ? 16 : 6));
+    SyncAxis ax[16];
+    for (int i = 0; i < n; ++i) {
+      ax[i] = k % 2 ? benchAxis(r) : broadAxis(r);
+      ax[i].start.v = ax[i].start.a = ax[i].vEnd = 0;
+      if (r.chance(0.05)) ax[i].target = ax[i].start.p;
+    }
+    Profile out[16], ref[16];
+    const SyncResult a = planPhaseSynchronized(ax, n, out);
+    const SyncResult b = legacy::oldPlanPhaseSynchronized(ax, n, ref);
+    std::string err;
+    if (a.status != b.status || a.axis != b.axis || !(a.duration == b.duration)) err = "status or duration";
+    for (int i = 0; i < n && err.empty(); ++i)
+      if (!bitwise(out[i], ref[i])) err = "axis " + std::to_string(i);
+    if (!err.empty() && ++failures <= 10) ADD_FAILURE() << "case " << k << ": " << err << describe(ax, n);
   }
   EXPECT_EQ(failures, 0u) << failures << " failures";
 }
