@@ -126,22 +126,14 @@ bool restTimed(const SyncAxis& ax, double T, Profile& out) {
     T2 = vp / dec;
   }
   const double tc = std::max(0.0, T - T1 - T2);
+  // (the segments with duration > 0, the state snapped to (vp, 0) before the cruise)
   if (jm) {
-    for (int k = 0; k < 3; ++k)
-      if (d1[k] > 0) out.push(d1[k], j1[k]);
-  } else if (T1 > 0) {
-    out.pushAcc(T1, dir * acc);
-  }
-  out.snap(dir * vp, 0.0);
-  if (tc > 0) {
-    if (jm) out.push(tc, 0.0);
-    else out.pushAcc(tc, 0.0);
-  }
-  if (jm) {
-    for (int k = 0; k < 3; ++k)
-      if (d2[k] > 0) out.push(d2[k], j2[k]);
-  } else if (T2 > 0) {
-    out.pushAcc(T2, -dir * dec);
+    const double dur[7] = {d1[0], d1[1], d1[2], tc, d2[0], d2[1], d2[2]};
+    const double val[7] = {j1[0], j1[1], j1[2], 0.0, j2[0], j2[1], j2[2]};
+    out.pushSegments(dur, val, 7, false, 3, dir * vp);
+  } else {
+    const double dur[3] = {T1, tc, T2}, val[3] = {dir * acc, 0.0, -dir * dec};
+    out.pushSegments(dur, val, 3, true, 1, dir * vp);
   }
   out.finish({ax.target, ax.vEnd, 0.0});
   return std::fabs(out.duration() - T) <= 1e-10 * std::max(1.0, T);
@@ -220,31 +212,38 @@ SyncResult planSynchronized(const SyncAxis* axes, int n, Profile* out) {
     if (!fams.has(i)) fams.make(i, axes[i]);
     return fams[i].plan(T, out[i]);
   };
-  // Every axis without a family accepts every T >= tLow.  When no family has a
-  // start after tLow, tLow is the only candidate (rest-to-rest sets).
-  constexpr int kCap = kMaxSyncAxes * (detail::TimedFamily::kMaxPoints + 2) + 1;
-  double cand[kCap];
-  int nc = 0;
-  cand[nc++] = tLow;
-  for (int i = 0; i < n && nFam > 0; ++i) {
-    if (rest[i]) continue;
-    double s[detail::TimedFamily::kMaxPoints + 2];
-    const int k = fams[i].starts(s, detail::TimedFamily::kMaxPoints + 2);
-    for (int j = 0; j < k; ++j)
-      if (s[j] > tLow && nc < kCap) cand[nc++] = s[j];
-  }
-  if (nc > 1) std::sort(cand, cand + nc);
-  // the first candidate at which every axis has a plan (cheap test first)
-  double T = cand[nc - 1];
-  for (int c = 0; c < nc; ++c) {
+  // every axis' plan of duration t (the cheap test first)
+  auto allAt = [&](double t) {
     bool all = true;
-    for (int i = 0; i < n && all; ++i) all = rest[i] || fams[i].feasible(cand[c]);
-    for (int i = 0; i < n && all; ++i) all = planAxis(i, cand[c]);
-    if (all) {
-      T = cand[c];
-      break;
+    for (int i = 0; i < n && all; ++i) all = rest[i] || fams[i].feasible(t);
+    for (int i = 0; i < n && all; ++i) all = planAxis(i, t);
+    return all;
+  };
+  // The candidates are tLow and, after it, the starts of the families' feasible
+  // intervals; the first at which every axis has a plan is T.  tLow is tried
+  // first, before the others are collected: it is the answer in most sets (every
+  // axis without a family accepts every T >= tLow; rest-to-rest sets have no
+  // other candidate).
+  double T = tLow;
+  if (!allAt(tLow)) {
+    constexpr int kCap = kMaxSyncAxes * (detail::TimedFamily::kMaxPoints + 2) + 1;
+    double cand[kCap];
+    int nc = 0;
+    cand[nc++] = tLow;
+    for (int i = 0; i < n && nFam > 0; ++i) {
+      if (rest[i]) continue;
+      double s[detail::TimedFamily::kMaxPoints + 2];
+      const int k = fams[i].starts(s, detail::TimedFamily::kMaxPoints + 2);
+      for (int j = 0; j < k; ++j)
+        if (s[j] > tLow && nc < kCap) cand[nc++] = s[j];
     }
-    if (c == nc - 1) {
+    if (nc > 1) std::sort(cand, cand + nc);
+    bool all = false;
+    for (int c = 1; c < nc && !all; ++c) {
+      all = allAt(cand[c]);
+      if (all) T = cand[c];
+    }
+    if (!all) {
       // G(vp) is not monotone on every piece, so an interval may begin between
       // the candidates: go later (every axis' last interval is unbounded)
       double t = cand[nc - 1];
@@ -327,11 +326,14 @@ SyncResult planPhaseSynchronized(const SyncAxis* axes, int n, Profile* out) {
     const double d = a.target - a.start.p;
     Profile& o = out[i];
     o.clear(a.start);
-    for (int k = 0; k < s.segmentCount(); ++k) {
+    double dur[Profile::kMaxSegments], val[Profile::kMaxSegments];
+    const int ns = s.segmentCount();
+    for (int k = 0; k < ns; ++k) {
       const Profile::Segment& g = s.segment(k);
-      if (jerkMode) o.push(g.dur, g.j * d);
-      else o.pushAcc(g.dur, g.a * d);
+      dur[k] = g.dur;   // (> 0: planPosition pushes no empty segment)
+      val[k] = jerkMode ? g.j * d : g.a * d;
     }
+    o.pushSegments(dur, val, ns, !jerkMode);
     if (d != 0) o.finish({a.target, 0, 0});
     else {
       o.finish(a.start);

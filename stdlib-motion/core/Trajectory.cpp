@@ -64,13 +64,7 @@ inline Kinematic integrate(const Kinematic& s, double j, double dt) {
           s.a + dt * j};
 }
 
-struct Ctx {
-  double J;       // jerk (jerk mode only)
-  double acc, dec, vel;
-  bool jerkMode;
-  // reciprocals (jerk mode): 1/J and 1/acc, 1/dec, 1/min(acc, dec)
-  double iJ, iAcc, iDec, amin, iAmin;
-};
+using detail::Ctx;
 
 // A velocity transition: up to 3 phases (jerk mode: constant jerk; trapezoidal
 // mode: constant acceleration), total time T and displacement D.
@@ -161,12 +155,26 @@ inline void trans(double u, double a0, double w, const Ctx& c, Trans& r, int uz 
   else transTrap(u, w, c, r);
 }
 
-void pushTrans(Profile& out, const Trans& r, bool jerkMode) {
-  for (int i = 0; i < r.n; ++i) {
-    if (!(r.dur[i] > 0)) continue;
-    if (jerkMode) out.push(r.dur[i], r.val[i]);
-    else out.pushAcc(r.dur[i], r.val[i]);
-  }
+void pushTrans(Profile& out, const Trans& r, bool jerkMode) { out.pushSegments(r.dur, r.val, r.n, !jerkMode); }
+
+// The segments of a plan of the peak-velocity shape: transition r1 into vp,
+// (snapped to vp, a = 0) cruise for tc (if > 0), transition r2; as pushTrans(r1),
+// snap(vp, 0), push(tc, 0), pushTrans(r2) (trapezoidal mode: pushAcc).
+void peakSegs(const Trans& r1, double vp, double tc, const Trans& r2, bool jerkMode, detail::PlanSegs& sg) {
+  int n = 0;
+  for (int i = 0; i < r1.n; ++i) { sg.dur[n] = r1.dur[i]; sg.val[n++] = r1.val[i]; }
+  sg.snapAt = n;
+  sg.snapV = vp;
+  sg.dur[n] = tc; sg.val[n++] = 0.0;
+  for (int i = 0; i < r2.n; ++i) { sg.dur[n] = r2.dur[i]; sg.val[n++] = r2.val[i]; }
+  sg.n = n;
+  sg.acc = !jerkMode;
+}
+
+void pushPeakPlan(Profile& out, const Trans& r1, double vp, double tc, const Trans& r2, bool jerkMode) {
+  detail::PlanSegs sg;
+  peakSegs(r1, vp, tc, r2, jerkMode, sg);
+  out.pushSegments(sg.dur, sg.val, sg.n, sg.acc, sg.snapAt, sg.snapV);
 }
 
 inline bool finite(double x) { return std::isfinite(x); }
@@ -253,8 +261,9 @@ inline double mapPiece(double lo, double hi, double u) {
 }
 
 // fn(x, T*, mag*, zs) is the residual at x on the piece [lo, hi].
+// (converged: set to true when the result is a point where |fn| <= 4e-16 mag)
 template <class Fn>
-double solveRootOn(const Fn& fn, double lo, double flo, double hi, double fhi, int zs) {
+double solveRootOn(const Fn& fn, double lo, double flo, double hi, double fhi, int zs, bool* converged = nullptr) {
   double u0 = 0, f0 = flo, u1 = 1, f1 = fhi;
   for (int it = 0; it < 100; ++it) {
     double u = u1 - f1 * (u1 - u0) / (f1 - f0);
@@ -266,7 +275,10 @@ double solveRootOn(const Fn& fn, double lo, double flo, double hi, double fhi, i
     double mag;
     const double fu = fn(mapPiece(lo, hi, u), nullptr, &mag, zs);
     if (std::isnan(fu)) return fu;
-    if (std::fabs(fu) <= 4e-16 * mag) return mapPiece(lo, hi, u);
+    if (std::fabs(fu) <= 4e-16 * mag) {
+      if (converged) *converged = true;
+      return mapPiece(lo, hi, u);
+    }
     if ((fu < 0) != (f1 < 0)) {
       u0 = u1; f0 = f1;
     } else {
@@ -281,6 +293,120 @@ double solveRoot(const PosProblem& p, double lo, double flo, double hi, double f
   const int zs = lo == 0 ? 1 : hi == 0 ? -1 : 0;   // a piece next to 0 is on one side of it
   auto fn = [&p](double x, double* T, double* mag, int z) { return p.f(x, T, mag, z); };
   return solveRootOn(fn, lo, flo, hi, fhi, zs);
+}
+
+// The cruise equation of TimedFamily::plan: h(x) = x (T1 + T2 - T) - (D(x) - delta)
+// is zero where the family member with peak velocity x, cruising for the rest of
+// T, ends at the target (T1, T2: the transitions into and out of x; D: their
+// displacement).  With its derivatives in x: inside a piece the transitions keep
+// their direction and bound, and, for the transition into x (mirrored frame: end
+// velocity wp = s x, final ramp at acceleration ap for t3), dT1/dx = s / ap and
+// dD1/dx = wp / ap + t3 / 2; for the one out of x (start up = s x, first ramp at
+// ap for t1), dT2/dx = -s / ap and dD2/dx = t1 / 2 - up / ap.  When both have a
+// plateau (trapezoidal mode: always) T1 + T2 is linear and D quadratic in x, so h
+// is a quadratic with h'' = d(T1 + T2)/dx; a triangle's ap moves with x (second
+// derivatives below).
+struct CruiseEval {
+  double x = 0, h = 0, dh = 0, d2h = 0, mag = 0;
+  double dTabs = 0;    // |dT1/dx| + |dT2/dx|
+  bool quad = false;   // h is the quadratic h + dh d + d2h d^2 / 2 around x
+  Trans r1, r2;
+};
+
+inline void cruiseEval(const Ctx& c, double v0, double a0, double vEnd, double delta, double T, double x, int z,
+                       CruiseEval& e) {
+  trans(v0, a0, x, c, e.r1, 0, z);
+  trans(x, 0, vEnd, c, e.r2, z, 0);
+  const Trans &a = e.r1, &b = e.r2;
+  // (the arithmetic of PosProblem::f and of the residual as TimedFamily::plan had it)
+  const double tr = a.T + b.T;
+  const double fx = (a.D + b.D) - delta;
+  e.x = x;
+  e.mag = (std::fabs(a.D) + std::fabs(b.D) + std::fabs(delta)) + std::fabs(x) * (tr + T);
+  e.h = x * (tr - T) - fx;
+  double dT, dD, d2T = 0, d2D;
+  if (c.jerkMode) {
+    const double ia = c.iJ / a.dur[2], ib = c.iJ / b.dur[0];   // 1 / ap of each
+    dT = a.s * ia - b.s * ib;
+    e.dTabs = std::fabs(ia) + std::fabs(ib);
+    dD = (a.s * x * ia + 0.5 * a.dur[2]) + (0.5 * b.dur[0] - b.s * x * ib);
+    // second derivatives: with a plateau ap is fixed (T'' = 0, D1'' = s / A,
+    // D2'' = -s / A); a triangle's ap = sqrt(J |x - x0| + ...) moves with x:
+    // T'' = -J / (2 ap^3), D1'' = 5 s / (4 ap) - x J / (2 ap^3), D2'' = -5 s / (4 ap) - x J / (2 ap^3)
+    const bool triA = !a.over && !(a.dur[1] > 0), triB = !(b.dur[1] > 0);
+    d2D = triA ? 1.25 * a.s * ia : a.s * ia;
+    d2D -= triB ? 1.25 * b.s * ib : b.s * ib;
+    if (triA) {
+      const double k = -0.5 * c.J * ia * ia * ia;
+      d2T += k;
+      d2D += x * k;
+    }
+    if (triB) {
+      const double k = -0.5 * c.J * ib * ib * ib;
+      d2T += k;
+      d2D += x * k;
+    }
+    e.quad = !triA && !triB;
+  } else {
+    // ramps at the accelerations val[]: T1 = (x - v0) / val, D1 = (x^2 - v0^2) / (2 val), and
+    // crossing 0: T1 = |v0| / dec + x / val[1], D1 = (v0 t1 + x t2) / 2; likewise out of x
+    double dT1 = 0, dD1 = 0, dT2 = 0, dD2 = 0;
+    if (a.n == 1) { dT1 = 1 / a.val[0]; dD1 = 0.5 * a.T + 0.5 * (v0 + x) * dT1; }
+    else if (a.n == 2) { dT1 = 1 / a.val[1]; dD1 = 0.5 * (a.dur[1] + x * dT1); }
+    if (b.n == 1) { dT2 = -1 / b.val[0]; dD2 = 0.5 * b.T + 0.5 * (x + vEnd) * dT2; }
+    else if (b.n == 2) { dT2 = -1 / b.val[0]; dD2 = 0.5 * (b.dur[0] + x * dT2); }
+    dT = dT1 + dT2;
+    dD = dD1 + dD2;
+    d2D = dT;   // (D1'' = 1 / val = T1', likewise D2'')
+    e.dTabs = std::fabs(dT1) + std::fabs(dT2);
+    e.quad = true;
+  }
+  e.dh = (tr - T) + x * dT - dD;
+  e.d2h = 2 * dT + x * d2T - d2D;
+}
+
+// A root of h on (lo, hi), h(lo) and h(hi) of opposite signs (neither 0): steps
+// to the nearer root of the local quadratic h + h' d + h'' d^2 / 2 (exact up to
+// rounding with a plateau in both transitions, else third-order convergence;
+// Newton where it has no real root), kept inside the bracket (else an Illinois
+// step).  True with e at a point where |h| <= 4e-16 mag (solveRootOn's test);
+// false after kMaxEvals evaluations (e: the last one).  2.7 evaluations per
+// root on BM_Sync6ArbitraryStates' sets (solveRootOn took about 6).
+inline bool cruiseRoot(const Ctx& c, double v0, double a0, double vEnd, double delta, double T, double lo,
+                       double hlo, double hi, double hhi, int z, CruiseEval& e) {
+  constexpr int kMaxEvals = 12;
+  double xa = lo, ha = hlo, xb = hi, hb = hhi;   // the bracket, ha * hb < 0
+  // first point: solveRootOn's first step (secant in its smoothstep variable)
+  double x = mapPiece(lo, hi, hlo / (hlo - hhi));
+  int side = 0;   // the end the last bracket steps kept (Illinois)
+  for (int it = 0; it < kMaxEvals; ++it) {
+    if (!(x > std::min(xa, xb) && x < std::max(xa, xb))) x = 0.5 * (xa + xb);
+    cruiseEval(c, v0, a0, vEnd, delta, T, x, z, e);
+    if (std::isnan(e.h)) return false;
+    if (std::fabs(e.h) <= 4e-16 * e.mag) return true;
+    if ((e.h < 0) == (ha < 0)) { xa = x; ha = e.h; }
+    else { xb = x; hb = e.h; }
+    // the model's step (the root of the local quadratic, exact if e.quad)
+    double d = std::numeric_limits<double>::quiet_NaN();
+    if (e.d2h != 0) {
+      const double disc = e.dh * e.dh - 2 * e.d2h * e.h;
+      if (disc >= 0) d = -2 * e.h / (e.dh + std::copysign(std::sqrt(disc), e.dh));   // (the smaller root)
+    }
+    if (!std::isfinite(d)) d = -e.h / e.dh;
+    double xn = x + d;
+    if (!(xn > std::min(xa, xb) && xn < std::max(xa, xb))) {
+      // regula falsi on the bracket, halving the value at the end kept twice
+      const int keep = (x == xa) ? 2 : 1;
+      if (side == keep) { if (keep == 1) ha *= 0.5; else hb *= 0.5; }
+      side = keep;
+      xn = xb - hb * (xb - xa) / (hb - ha);
+    } else {
+      side = 0;
+    }
+    if (xn == x) return false;
+    x = xn;
+  }
+  return false;
 }
 
 // Rest-to-rest (v0 = a0 = vEnd = 0), jerk-limited, closed form.  The rising
@@ -331,10 +457,7 @@ void planRestToRestJerk(const Kinematic& start, double target, const Ctx& c, Pro
   transJerk(0, 0, dir * vp, c, r1);
   transJerk(dir * vp, 0, 0, c, r2);
   out.clear(start);
-  pushTrans(out, r1, true);
-  out.snap(dir * vp, 0.0);
-  if (tc > 0) out.push(tc, 0.0);
-  pushTrans(out, r2, true);
+  pushPeakPlan(out, r1, dir * vp, tc, r2, true);
   out.finish({target, 0.0, 0.0});
 }
 
@@ -361,6 +484,25 @@ void Profile::pushAcc(double duration, double acc) {
   segs_[count_++] = {duration_, cur_.p, cur_.v, acc, 0.0, duration};
   cur_ = integrate(cur_, 0.0, duration);
   duration_ += duration;
+}
+
+void Profile::pushSegments(const double* dur, const double* val, int n, bool acc, int snapAt, double snapV) {
+  Kinematic c = cur_;
+  double t = duration_;
+  int k = count_;
+  for (int i = 0; i < n; ++i) {
+    if (i == snapAt) { c.v = snapV; c.a = 0.0; }
+    if (!(dur[i] > 0) || k >= kMaxSegments) continue;
+    const double j = acc ? 0.0 : val[i];
+    if (acc) c.a = val[i];
+    segs_[k++] = {t, c.p, c.v, c.a, j, dur[i]};
+    c = integrate(c, j, dur[i]);
+    t += dur[i];
+  }
+  if (snapAt >= n) { c.v = snapV; c.a = 0.0; }
+  cur_ = c;
+  duration_ = t;
+  count_ = k;
 }
 
 void Profile::finish(const Kinematic& exactEnd) {
@@ -404,7 +546,57 @@ PlanStatus planVelocity(const Kinematic& start, double vTarget, const Limits& li
   return PlanStatus::Ok;
 }
 
+namespace {
+
+// What planPosition found about the peak-velocity family on its way to the
+// optimum (TimedFamily::init starts from it instead of finding it again): the
+// breakpoints of vp with D - delta and the transition time there, and the roots
+// of D = delta between them with D - delta and the time at the root.  Not
+// filled (valid false) for the closed-form rest-to-rest plans.
+struct PosScan {
+  bool defer = false;   // (in) describe the optimal plan in segs (and duration), do not build it
+  bool deferred = false;
+  detail::PlanSegs segs;
+  double duration = 0;
+  bool valid = false;
+  Ctx c;          // makeCtx(lim)
+  double vnat;    // the velocity at which ramping a0 out ends
+  int nb = 0, nr = 0;
+  double bp[8], fv[8], Tv[8];
+  int zs[8];
+  double root[8], rootF[8], rootT[8];
+  int rootSide[8];
+};
+
+PlanStatus planPositionImpl(const Kinematic& start, double target, double vEnd, const Limits& lim, Profile& out,
+                            PosScan* scan);
+
+// The optimal plan found: built into out, or (scan->defer) described in scan with
+// the duration the Profile would have (the same sum in the same order).
+void finishPlan(const Kinematic& start, const detail::PlanSegs& sg, Profile& out, PosScan* scan) {
+  if (scan && scan->defer) {
+    scan->deferred = true;
+    scan->segs = sg;
+    double t = 0;
+    int k = 0;
+    for (int i = 0; i < sg.n; ++i)
+      if (sg.dur[i] > 0 && k < Profile::kMaxSegments) { t += sg.dur[i]; ++k; }
+    scan->duration = t;
+    return;
+  }
+  sg.build(start, out);
+}
+
+}  // namespace
+
 PlanStatus planPosition(const Kinematic& start, double target, double vEnd, const Limits& lim, Profile& out) {
+  return planPositionImpl(start, target, vEnd, lim, out, nullptr);
+}
+
+namespace {
+
+PlanStatus planPositionImpl(const Kinematic& start, double target, double vEnd, const Limits& lim, Profile& out,
+                            PosScan* scan) {
   PlanStatus st = checkLimits(lim);
   if (st == PlanStatus::Ok && (!finite(target) || !finite(vEnd) || std::fabs(vEnd) > lim.vel))
     st = PlanStatus::InvalidTarget;
@@ -483,8 +675,21 @@ PlanStatus planPosition(const Kinematic& start, double target, double vEnd, cons
       const double x = solveRoot(P, bp[i], fv[i], bp[i + 1], fv[i + 1]);
       const int side = x != 0 ? 0 : bp[i] == 0 ? 1 : -1;
       double T;
-      P.f(x, &T, nullptr, side);
+      const double fx = P.f(x, &T, nullptr, side);
       if (T < bestT) { bestT = T; bestVp = x; bestTc = 0; bestZs = side; }
+      if (scan) {
+        const int k = scan->nr++;
+        scan->root[k] = x; scan->rootF[k] = fx; scan->rootT[k] = T; scan->rootSide[k] = side;
+      }
+    }
+  }
+  if (scan) {
+    scan->valid = true;
+    scan->c = c;
+    scan->vnat = vnat;
+    scan->nb = nb;
+    for (int i = 0; i < nb; ++i) {
+      scan->bp[i] = bp[i]; scan->zs[i] = zs[i]; scan->fv[i] = fv[i]; scan->Tv[i] = Tv[i];
     }
   }
 
@@ -560,10 +765,13 @@ PlanStatus planPosition(const Kinematic& start, double target, double vEnd, cons
     if (eased) {
       Trans r;
       E.f(bestTe, nullptr, nullptr, &r);
-      out.clear(start);
-      if (bestTe > 0) out.push(bestTe, -g * c.J);
-      pushTrans(out, r, true);
-      out.finish({target, vEnd, 0.0});
+      detail::PlanSegs sg;
+      sg.dur[0] = bestTe;
+      sg.val[0] = -g * c.J;
+      for (int i = 0; i < r.n; ++i) { sg.dur[1 + i] = r.dur[i]; sg.val[1 + i] = r.val[i]; }
+      sg.n = 1 + r.n;
+      sg.end = {target, vEnd, 0.0};
+      finishPlan(start, sg, out, scan);
       return PlanStatus::Ok;
     }
   }
@@ -571,17 +779,14 @@ PlanStatus planPosition(const Kinematic& start, double target, double vEnd, cons
   Trans r1, r2;
   trans(P.v0, P.a0, bestVp, c, r1, 0, bestZs);
   trans(bestVp, 0, vEnd, c, r2, bestZs, 0);
-  out.clear(start);
-  pushTrans(out, r1, c.jerkMode);
-  out.snap(bestVp, 0.0);
-  if (bestTc > 0) {
-    if (c.jerkMode) out.push(bestTc, 0.0);
-    else out.pushAcc(bestTc, 0.0);
-  }
-  pushTrans(out, r2, c.jerkMode);
-  out.finish({target, vEnd, 0.0});
+  detail::PlanSegs sg;
+  peakSegs(r1, bestVp, bestTc, r2, c.jerkMode, sg);
+  sg.end = {target, vEnd, 0.0};
+  finishPlan(start, sg, out, scan);
   return PlanStatus::Ok;
 }
+
+}  // namespace
 
 }  // namespace stc::motion
 
@@ -592,22 +797,31 @@ namespace stc::motion::detail {
 PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd, const Limits& lim) {
   n_ = 0;
   wait_ = false;
-  const PlanStatus st = planPosition(start, target, vEnd, lim, opt_);
+  PosScan scan;
+  scan.defer = true;
+  const PlanStatus st = planPositionImpl(start, target, vEnd, lim, opt_, &scan);
+  optBuilt_ = !scan.deferred;   // (else opt_ holds the plan: the closed forms, an invalid input)
+  if (scan.deferred) {
+    optSegs_ = scan.segs;
+    tMin_ = scan.duration;
+  } else {
+    tMin_ = opt_.duration();
+  }
   if (st != PlanStatus::Ok) return st;
-  lim_ = lim;
   start_ = start;
   target_ = target;
   vEnd_ = vEnd;
   PosProblem P;
-  P.c = makeCtx(lim);
+  P.c = c_ = scan.valid ? scan.c : makeCtx(lim);
   P.v0 = v0_ = start.v;
   P.a0 = a0_ = P.c.jerkMode ? start.a : 0.0;
   P.vEnd = vEnd;
   P.delta = delta_ = target - start.p;
   const double vel = P.c.vel;
-  const double vnat = P.c.jerkMode ? P.v0 + P.a0 * std::fabs(P.a0) / (2 * P.c.J) : P.v0;
+  const double vnat = scan.valid ? scan.vnat : P.c.jerkMode ? P.v0 + P.a0 * std::fabs(P.a0) / (2 * P.c.J) : P.v0;
   // points: the breakpoints of vp (as in planPosition), then the roots of D = delta
-  auto add = [&](double x, int side) {
+  // (x, side) with its D - delta and transition time, into the sorted points
+  auto addKnown = [&](double x, int side, double f, double tt) {
     if (n_ >= kMaxPoints) return;
     int k = n_++;
     while (k > 0 && (x_[k - 1] > x || (x_[k - 1] == x && zs_[k - 1] > side))) {
@@ -616,14 +830,21 @@ PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd,
     }
     x_[k] = x;
     zs_[k] = side;
-    f_[k] = P.f(x, &tt_[k], nullptr, side);
+    f_[k] = f;
+    tt_[k] = tt;
+  };
+  auto add = [&](double x, int side) {
+    double tt;
+    const double f = P.f(x, &tt, nullptr, side);
+    addKnown(x, side, f, tt);
   };
   const double inf = std::numeric_limits<double>::infinity();
   if (start.v == 0 && P.a0 == 0 && vEnd == 0 && delta_ != 0) {
     // rest to rest: the durations are [minimum, inf), cruising at 0 < |vp| <= the
     // optimal peak (G falls from inf to the minimum there)
     double peak = 0;
-    for (int i = 0; i < opt_.segmentCount(); ++i) peak = std::max(peak, std::fabs(opt_.segment(i).v));
+    const Profile& opt = optimal();
+    for (int i = 0; i < opt.segmentCount(); ++i) peak = std::max(peak, std::fabs(opt.segment(i).v));
     const double dir = delta_ > 0 ? 1.0 : -1.0;
     if (dir > 0) { add(0.0, 1); add(peak, 0); }
     else { add(-peak, 0); add(0.0, -1); }
@@ -634,20 +855,33 @@ PlanStatus TimedFamily::init(const Kinematic& start, double target, double vEnd,
     inS_[1] = false;
     return PlanStatus::Ok;
   }
-  add(-vel, 0);
-  add(0.0, -1);
-  add(0.0, 1);
-  if (vnat > -vel && vnat < vel && vnat != 0) add(vnat, 0);
-  if (vEnd > -vel && vEnd < vel && vEnd != 0 && vEnd != vnat) add(vEnd, 0);
-  add(vel, 0);
-  double roots[8];
-  int nr = 0;
-  for (int i = 0; i + 1 < n_; ++i) {
-    if (x_[i] == 0 && x_[i + 1] == 0) continue;
-    if ((f_[i] < 0 && f_[i + 1] > 0) || (f_[i] > 0 && f_[i + 1] < 0))
-      roots[nr++] = solveRoot(P, x_[i], f_[i], x_[i + 1], f_[i + 1]);
+  if (scan.valid) {
+    // planPosition's breakpoints (sorted; vNat = vEnd twice) and roots, with the
+    // values it computed (the same arithmetic as evaluating them here)
+    for (int i = 0; i < scan.nb; ++i)
+      if (i == 0 || scan.bp[i] != scan.bp[i - 1] || scan.zs[i] != scan.zs[i - 1])
+        addKnown(scan.bp[i], scan.zs[i], scan.fv[i], scan.Tv[i]);
+    for (int i = 0; i < scan.nr; ++i) {
+      const double x = scan.root[i];
+      if (x != 0 || scan.rootSide[i] == 1) addKnown(x, x == 0 ? 1 : 0, scan.rootF[i], scan.rootT[i]);
+      else add(x, 1);   // (a root at 0 from the left: the points use 0+)
+    }
+  } else {
+    add(-vel, 0);
+    add(0.0, -1);
+    add(0.0, 1);
+    if (vnat > -vel && vnat < vel && vnat != 0) add(vnat, 0);
+    if (vEnd > -vel && vEnd < vel && vEnd != 0 && vEnd != vnat) add(vEnd, 0);
+    add(vel, 0);
+    double roots[8];
+    int nr = 0;
+    for (int i = 0; i + 1 < n_; ++i) {
+      if (x_[i] == 0 && x_[i + 1] == 0) continue;
+      if ((f_[i] < 0 && f_[i + 1] > 0) || (f_[i] > 0 && f_[i + 1] < 0))
+        roots[nr++] = solveRoot(P, x_[i], f_[i], x_[i + 1], f_[i + 1]);
+    }
+    for (int i = 0; i < nr; ++i) add(roots[i], roots[i] == 0 ? 1 : 0);
   }
-  for (int i = 0; i < nr; ++i) add(roots[i], roots[i] == 0 ? 1 : 0);
   // stop and wait: D(0) = delta on one side of 0
   for (int i = 0; i < n_; ++i) {
     if (x_[i] == 0 && f_[i] == 0 && (!wait_ || tt_[i] < waitT_)) {
@@ -701,11 +935,22 @@ bool TimedFamily::feasible(double T) const {
   return false;
 }
 
+const Profile& TimedFamily::optimal() const {
+  if (!optBuilt_) {
+    optSegs_.build(start_, opt_);
+    optBuilt_ = true;
+  }
+  return opt_;
+}
+
 bool TimedFamily::plan(double T, Profile& out) const {
-  out = opt_;
-  if (closeTo(T, minimum())) return true;
+  if (closeTo(T, minimum())) {
+    if (optBuilt_) out = opt_;
+    else optSegs_.build(start_, out);
+    return true;
+  }
   PosProblem P;
-  P.c = makeCtx(lim_);
+  P.c = c_;
   P.v0 = v0_;
   P.a0 = a0_;
   P.vEnd = vEnd_;
@@ -713,7 +958,8 @@ bool TimedFamily::plan(double T, Profile& out) const {
   const Ctx& c = P.c;
   double vp = 0;
   int side = 0;
-  bool found = false;
+  bool found = false, haveTrans = false;
+  CruiseEval ev;   // (haveTrans: the transitions at vp)
   if (wait_ && T >= waitT_) {
     vp = 0;
     side = waitSide_;
@@ -733,35 +979,54 @@ bool TimedFamily::plan(double T, Profile& out) const {
     if (!(T >= lo && T <= hi) && !closeTo(T, lo) && !closeTo(T, hi)) continue;
     if (closeTo(T, g_[i]) && x_[i] != 0) { vp = x_[i]; side = zs_[i]; found = true; break; }
     if (closeTo(T, g_[i + 1]) && x_[i + 1] != 0) { vp = x_[i + 1]; side = zs_[i + 1]; found = true; break; }
-    const double hlo = h(x_[i], nullptr, nullptr, zs_[i]), hhi = h(x_[i + 1], nullptr, nullptr, zs_[i + 1]);
+    // h at the points from their stored D - delta and transition time (as h computes it)
+    const double hlo = x_[i] * (tt_[i] - T) - f_[i], hhi = x_[i + 1] * (tt_[i + 1] - T) - f_[i + 1];
     if (!((hlo <= 0 && hhi >= 0) || (hlo >= 0 && hhi <= 0))) continue;
     const int z = x_[i] == 0 ? 1 : x_[i + 1] == 0 ? -1 : 0;
-    vp = solveRootOn(h, x_[i], hlo, x_[i + 1], hhi, z);
+    if (hlo != 0 && hhi != 0 && cruiseRoot(c, v0_, a0_, vEnd_, delta_, T, x_[i], hlo, x_[i + 1], hhi, z, ev)) {
+      // Accepted where the root is well resolved: |h| <= 4e-16 mag leaves vp
+      // uncertain by about kappa, negligible against vp, against its distance to
+      // the piece's ends (where a transition shrinks to nothing, its times and
+      // acceleration ~ sqrt of that distance), in the transition times, and in
+      // the position after cruising (kappa T) against the distance to go and the
+      // target (the positions after the cruise).
+      // Otherwise (a tiny transition, a flat h, a long cruise far out and back)
+      // the bracketing solver below, as before: its result there depends on where
+      // it stops inside that uncertainty, and it is kept.
+      const double kappa = 4e-16 * ev.mag / std::fabs(ev.dh);
+      const double dist = std::min(std::fabs(ev.x - x_[i]), std::fabs(x_[i + 1] - ev.x));
+      if (kappa <= 1e-12 * dist && kappa <= 1e-13 * std::max(1.0, std::fabs(ev.x)) && kappa * ev.dTabs <= 1e-12 &&
+          kappa * T <= 1e-12 * std::max(1.0, std::min(std::fabs(delta_), std::fabs(target_)))) {
+        vp = ev.x;   // (inside the piece: not 0, and its transitions are those of side 0)
+        side = 0;
+        found = haveTrans = true;
+        break;
+      }
+    }
+    // (rare: the bracketing solver of the breakpoints' roots, as before)
+    bool converged = false;
+    vp = solveRootOn(h, x_[i], hlo, x_[i + 1], hhi, z, &converged);
     side = vp != 0 ? 0 : z;
-    double mag = 0;
-    found = !std::isnan(vp) && std::fabs(h(vp, nullptr, &mag, side)) <= 1e-11 * mag;
+    if (converged) {   // (|h| <= 4e-16 mag there: well inside the check below)
+      found = true;
+    } else {
+      double mag = 0;
+      found = !std::isnan(vp) && std::fabs(h(vp, nullptr, &mag, side)) <= 1e-11 * mag;
+    }
   }
   if (!found) return false;
-  Trans r1, r2;
-  trans(P.v0, P.a0, vp, c, r1, 0, side);
-  trans(vp, 0, vEnd_, c, r2, side, 0);
+  if (!haveTrans) {
+    trans(P.v0, P.a0, vp, c, ev.r1, 0, side);
+    trans(vp, 0, vEnd_, c, ev.r2, side, 0);
+  }
+  const Trans &r1 = ev.r1, &r2 = ev.r2;
   const double tc = std::max(0.0, T - r1.T - r2.T);
   out.clear(start_);
-  pushTrans(out, r1, c.jerkMode);
-  out.snap(vp, 0.0);
-  if (tc > 0) {
-    if (c.jerkMode) out.push(tc, 0.0);
-    else out.pushAcc(tc, 0.0);
-  }
-  pushTrans(out, r2, c.jerkMode);
+  pushPeakPlan(out, r1, vp, tc, r2, c.jerkMode);
   out.finish({target_, vEnd_, 0.0});
   // (G is not always monotone between the points: a piece whose end values
   // bracket T may not hold a plan of duration T)
-  if (!(std::fabs(out.duration() - T) <= 1e-10 * std::max(1.0, T))) {
-    out = opt_;
-    return false;
-  }
-  return true;
+  return std::fabs(out.duration() - T) <= 1e-10 * std::max(1.0, T);
 }
 
 }  // namespace stc::motion::detail

@@ -80,6 +80,11 @@ public:
   // Replaces the integrated velocity and acceleration at the current end by the
   // exactly known values (removes rounding drift before a long cruise).
   void snap(double v, double a) { cur_.v = v; cur_.a = a; }
+  // The same as, for i < n, push(dur[i], val[i]) (acc: pushAcc) where dur[i] > 0,
+  // with snap(snapV, 0) before segment snapAt (n: after the last; -1: none), in
+  // one pass: the integrated state stays in registers (push after push reloads it
+  // from memory right after storing it, a store-forwarding stall per segment).
+  void pushSegments(const double* dur, const double* val, int n, bool acc, int snapAt = -1, double snapV = 0);
 
 private:
   Segment segs_[kMaxSegments] = {};

@@ -15,18 +15,41 @@
 
 namespace stc::motion::detail {
 
+// The limits as the planner uses them (Trajectory.cpp: makeCtx).
+struct Ctx {
+  double J;       // jerk (jerk mode only)
+  double acc, dec, vel;
+  bool jerkMode;
+  // reciprocals (jerk mode): 1/J and 1/acc, 1/dec, 1/min(acc, dec)
+  double iJ, iAcc, iDec, amin, iAmin;
+};
+
+// A plan's segments as Profile::pushSegments takes them, and its exact end.
+struct PlanSegs {
+  double dur[8], val[8];
+  int n = 0, snapAt = -1;
+  double snapV = 0;
+  bool acc = false;
+  Kinematic end;
+  void build(const Kinematic& start, Profile& out) const {
+    out.clear(start);
+    out.pushSegments(dur, val, n, acc, snapAt, snapV);
+    out.finish(end);
+  }
+};
+
 class TimedFamily {
 public:
   // Plans the time-optimal motion and prepares the family.  Same checks and
   // statuses as planPosition.
   PlanStatus init(const Kinematic& start, double target, double vEnd, const Limits& lim);
-  double minimum() const { return opt_.duration(); }
-  const Profile& optimal() const { return opt_; }
+  double minimum() const { return tMin_; }
+  const Profile& optimal() const;
   // Durations where a feasible interval may begin (includes minimum()).
   int starts(double* out, int cap) const;
   // Can the axis arrive (target, vEnd, a = 0) after exactly T seconds?
   bool feasible(double T) const;
-  // A plan of duration T (T feasible); false (out = the optimal plan) otherwise.
+  // A plan of duration T (T feasible); false (out unspecified) otherwise.
   bool plan(double T, Profile& out) const;
 
   static constexpr int kMaxPoints = 16;
@@ -34,10 +57,15 @@ public:
 
 private:
   // the problem
-  Limits lim_;
+  Ctx c_;
   Kinematic start_;
   double target_ = 0, vEnd_ = 0, delta_ = 0, v0_ = 0, a0_ = 0;
-  Profile opt_;
+  // the time-optimal plan: its duration, its segments, and the Profile, built
+  // only when asked for (most families of a synchronised plan end at a later T)
+  double tMin_ = 0;
+  PlanSegs optSegs_;
+  mutable bool optBuilt_ = false;
+  mutable Profile opt_;
   int n_ = 0;
   double x_[kMaxPoints];   // vp points, sorted (0 twice: 0- then 0+)
   int zs_[kMaxPoints];
