@@ -116,7 +116,7 @@ const char* toString(StepStatus s) {
 
 Decoder::Decoder(const SourceManager& sm, uint32_t file, DiagnosticsEngine& diags, const DecoderOptions& opts,
                  VariableAccess* vars)
-    : sm_(sm), file_(file), text_(sm.file(file).text), opts_(opts), vars_(vars), rep_(&diags, file),
+    : text_(sm.file(file).text), opts_(opts), vars_(vars), rep_(&diags, file),
       parser_(text_, rep_), quietRep_(nullptr, file), quietParser_(text_, quietRep_) {
   quietRep_.quiet = true;
   reset();
@@ -457,11 +457,12 @@ bool Decoder::collectCommands(const Block& b, BlockCmds& c) {
     }
     *slot = Cmd{code, b.g[i]};
   }
-  // One command per block: a travel command, a non-modal command or an offset.
+  // One command per block: a travel command, a non-modal command or an offset
+  // that reads axis words (G53 reads none and goes with anything).
   const Cmd* cmds[] = {&c.motion, &c.other, &c.offset};
   const Cmd* first = nullptr;
   for (const Cmd* x : cmds) {
-    if (x->code < 0) continue;
+    if (x->code < 0 || x->code == 53) continue;
     if (first) {
       const Cmd* second = x->word > first->word ? x : first;
       const Cmd* earlier = second == x ? first : x;

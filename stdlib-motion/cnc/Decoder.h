@@ -149,8 +149,6 @@ private:
   uint32_t cmdBegin(const Block& b, const Cmd& c) const;
   uint32_t cmdStop(const Block& b, const Cmd& c) const;
 
-  const SourceManager& sm_;
-  uint32_t file_;
   std::string_view text_;
   DecoderOptions opts_;
   VariableAccess* vars_;

@@ -100,6 +100,7 @@ std::string checkWordValue(uint8_t slot, double v) {
       break;
     case 'G':
       if (!integral || v < 0) return "a G code is a non-negative integer";
+      if (v > 999) return "unknown G code 'G" + formatNumber(v) + "'";
       break;
     case 'M':
       if (!integral) return "an M function number is an integer";

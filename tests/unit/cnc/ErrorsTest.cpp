@@ -68,6 +68,7 @@ TEST(CncErrors, WordValues) {
   EXPECT_EQ(only("M0\n"), "prog.cnc:1:1: error: M0 is out of range (M functions are 1..65532) [gcode-range]");
   EXPECT_EQ(only("M1.5\n"), "prog.cnc:1:1: error: an M function number is an integer [gcode-range]");
   EXPECT_EQ(only("G1.5 X1\n"), "prog.cnc:1:1: error: a G code is a non-negative integer [gcode-range]");
+  EXPECT_EQ(only("G944444444442 X1\n"), "prog.cnc:1:1: error: unknown G code 'G944444444442' [gcode-range]");
   EXPECT_EQ(only("G7 X1\n"), "prog.cnc:1:1: error: unknown G code 'G7' is not a G code of the dialect [gcode-unknown-code]");
   EXPECT_EQ(only("G43 X1\n"),
             "prog.cnc:1:1: error: unknown G code 'G43' (tool length) is a SoftMotion code this dialect does not "
