@@ -362,6 +362,33 @@ TEST(CncCodes, G8EllipseNeedsRWhenSymmetricAndLineWhenNoEllipseFits) {
   expectPos(line.els[1].end, {5, 3, 0});
 }
 
+TEST(CncCodes, SeedsG8ExampleUsesRForSymmetricPoints) {
+  // N030 G98 / N040 G8 X200 Y100 I150 J100 K25 R0.5 from (100, 100): both
+  // points are equally far from the 25-degree main axis, so R decides.
+  Decoded r("N020 G0 X100 Y100\nN030 G98\nN040 G8 X200 Y100 I150 J100 K25 R0.5 F10\n");
+  ASSERT_EQ(r.errors(), 0u) << r.all();
+  const Element& e = r.els[1];
+  EXPECT_EQ(e.type, MoveType::EllClw);
+  EXPECT_EQ(e.blockNo, 40);
+  expectVec(e.ellipse.centre, {150, 100, 0});
+  EXPECT_NEAR(e.ellipse.b / e.ellipse.a, 0.5, 1e-12);
+  EXPECT_NEAR(e.ellipse.majorAngle, 25 * kPi / 180, 1e-12);
+  EXPECT_NEAR(e.ellipse.sweepPhi, -kPi, 1e-12);
+  for (double u : {0.0, 0.3, 0.5, 1.0}) {
+    Vec3 d = xyz(point(e, u)) - e.ellipse.centre;
+    double x = dot(d, e.ellipse.major), y = dot(d, cross(Vec3{0, 0, 1}, e.ellipse.major));
+    EXPECT_NEAR(x * x / (e.ellipse.a * e.ellipse.a) + y * y / (e.ellipse.b * e.ellipse.b), 1, 1e-12);
+  }
+  expectPos(point(e, 1), {200, 100, 0});
+}
+
+TEST(CncCodes, G53GoesWithATravelCommand) {
+  Decoded r("G54 X10\nG1 X0 F1\nG53 G1 X0\n");
+  ASSERT_EQ(r.errors(), 0u) << r.all();
+  expectPos(r.els[0].end, {10, 0, 0});
+  expectPos(r.els[1].end, {0, 0, 0});
+}
+
 TEST(CncCodes, MFunctionWithParameters) {
   Decoded r("N040 G1 X5 F1\nN050 M10 K87.6 L120.5\nN060 G1 X6 M11\n");
   ASSERT_EQ(r.errors(), 0u) << r.all();
