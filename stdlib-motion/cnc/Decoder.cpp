@@ -248,6 +248,16 @@ StepResult Decoder::step(ElementQueue& out, uint32_t maxBlocks) {
     ++r.blocks;
     const Block& b = block_;
     if (b.header) {
+      if (sawBlock_ && b.nameBegin == b.nameEnd && !b.bad) {
+        // A lone '%' after the blocks closes the program (RS274 files).
+        size_t rest = text_.find_first_not_of(" \t\r\n\f\v", offset_);
+        if (rest != std::string_view::npos)
+          rep_.warning(static_cast<uint32_t>(rest), static_cast<uint32_t>(rest + 1),
+                       "text after the closing '%' is ignored", "gcode-after-end");
+        finish(out);
+        r.status = StepStatus::Finished;
+        break;
+      }
       if (sawBlock_)
         rep_.error(b.headerAt, b.nameEnd,
                    "the program header '%name' must be the first line", "gcode-syntax");
@@ -418,7 +428,7 @@ bool Decoder::target(const Block& b, bool incremental, Pos& tgt) {
     }
     double p = incremental ? pos_[a] + v : v + offsetVec_[a];
     if (std::fabs(p) > kMaxPosition) {
-      rep_.error(w.begin, w.end, std::string("the position of ") + kAxisLetters[a] + " (" + formatNumber(p) +
+      rep_.error(w.begin, w.end, std::string("the position of ") + kAxisLetters[a] + " (" + formatApprox(p) +
                                      ") is out of range after offsets and increments",
                  "gcode-range");
       ok = false;
@@ -673,7 +683,7 @@ void Decoder::decodeBlock(const Block& b, ElementQueue& out) {
     } else {
       counter_ = c.other.code == 36 ? d : counter_ + d;
       if (!std::isfinite(counter_) || std::fabs(counter_) > 1e15) {
-        rep_.error(gw.begin, gw.end, "the decoder variable is out of range (" + formatNumber(counter_) + ")",
+        rep_.error(gw.begin, gw.end, "the decoder variable is out of range (" + formatApprox(counter_) + ")",
                    "gcode-range");
         counter_ = -1;
         return;
@@ -1005,7 +1015,7 @@ bool Decoder::buildArc(const Block& b, const Cmd& cmd, const Pos& tgtIn, Element
     if (rr < half) {
       if (half - rr > 1e-9 * std::max(1.0, half)) {
         rep_.error(rw.begin, rw.end, "the radius " + formatNumber(rr) + " is smaller than half the chord (" +
-                                         formatNumber(half) + "): no arc of this radius joins the points",
+                                         formatApprox(half) + "): no arc of this radius joins the points",
                    "gcode-arc");
         return false;
       }
@@ -1043,8 +1053,8 @@ bool Decoder::buildArc(const Block& b, const Cmd& cmd, const Pos& tgtIn, Element
       double diff = std::fabs(r0 - r1), rel = diff / std::max(r0, r1);
       if (rel > 0.1) {
         rep_.error(cmdAt, cmdEnd,
-                   "the end point is not on the arc: it is " + formatNumber(r1) + " from the centre, the start " +
-                       formatNumber(r0) + " (the decoder corrects differences up to 10%)",
+                   "the end point is not on the arc: it is " + formatApprox(r1) + " from the centre, the start " +
+                       formatApprox(r0) + " (the decoder corrects differences up to 10%)",
                    "gcode-arc");
         return false;
       }
@@ -1055,8 +1065,8 @@ bool Decoder::buildArc(const Block& b, const Cmd& cmd, const Pos& tgtIn, Element
         Vec3 C2 = M + dot(C - M, w) * w;
         if (rel > 1e-3)
           rep_.warning(cmdAt, cmdEnd,
-                       "arc centre moved by " + formatNumber(norm(C2 - C)) +
-                           " to fit the end point (start and end radii differ by " + formatNumber(rel * 100) + "%)",
+                       "arc centre moved by " + formatApprox(norm(C2 - C)) +
+                           " to fit the end point (start and end radii differ by " + formatApprox(rel * 100) + "%)",
                        "gcode-arc-centre");
         C = C2;
         s0 = S - C;

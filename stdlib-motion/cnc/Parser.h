@@ -113,8 +113,11 @@ private:
   std::set<std::pair<uint32_t, std::string>> seen_;
 };
 
-// The shortest text that reads back as v ("12.5", "1e+20").
+// The shortest text that reads back as v ("12.5", "1e+20"): for values the
+// user wrote.
 std::string formatNumber(double v);
+// Six significant digits ("8.30004"): for values the decoder computed.
+std::string formatApprox(double v);
 
 // Checks a value of a word that does not depend on the block: finite,
 // |v| <= 1e12, N/G/M/H integers in range.  Returns an error message or "".

@@ -575,6 +575,15 @@ TEST(CncCodes, CommentsHeaderCaseAndLeadingZeros) {
   EXPECT_EQ(r.els[2].line, 6);
 }
 
+TEST(CncCodes, PercentLinesOpenAndCloseTheProgram) {
+  Decoded r("%\n(CAM output)\nG90 G17\nG0 Z5.\nG1 X10. F300.\nM30\n%\n");
+  ASSERT_EQ(r.errors(), 0u) << r.all();
+  EXPECT_EQ(r.warnings(), 0u) << r.all();
+  ASSERT_EQ(r.els.size(), 3u);
+  EXPECT_EQ(r.els[2].type, MoveType::MCommand);   // M30 has no predefined meaning
+  EXPECT_EQ(r.els[2].m, 30);
+}
+
 TEST(CncCodes, VariablesInCoordinatesAndMH) {
   MapVars v;
   v.values = {{"x_pos", 12.5}, {"y_pos", -3}, {"M_cmd", 7}, {"H_cmd", -4}, {"P_X", 1}};

@@ -46,6 +46,8 @@ TEST(CncErrors, Lexical) {
             "prog.cnc:1:5: error: expressions in braces are not part of this G-code dialect [gcode-unsupported]");
   EXPECT_EQ(only("G1 X10 / F1\n"),
             "prog.cnc:1:8: error: '/' (block skip) must be the first character of the block [gcode-syntax]");
+  EXPECT_EQ(only("N10 G1 X1 F1\n%\nG1 X2\n"),
+            "prog.cnc:3:1: warning: text after the closing '%' is ignored [-Wgcode-after-end]");
   EXPECT_EQ(only("N10 G1 X1 F1\n% late\n"),
             "prog.cnc:2:1: error: the program header '%name' must be the first line [gcode-syntax]");
   EXPECT_EQ(only("G1 X10 N5 F1\n"),
