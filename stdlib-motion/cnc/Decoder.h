@@ -128,6 +128,13 @@ private:
   void indexBlock(const Block& b);
   bool findTarget(const Block& b, const Word& w, uint32_t& offset, uint32_t& line);
   void decodeBlock(const Block& b, ElementQueue& out);
+  bool planeNormal(const Block& b, const BlockCmds& c);
+  bool variable(const Block& b, const BlockCmds& c);
+  bool offsets(const Block& b, const BlockCmds& c);
+  bool preprocessing(const Block& b, const BlockCmds& c);
+  bool otherElement(const Block& b, const BlockCmds& c, ElementQueue& out);
+  bool mFunction(const Block& b, ElementQueue& out);
+  void jump(const Block& b, const BlockCmds& c, ElementQueue& out);
   bool collectCommands(const Block& b, BlockCmds& c);
   bool checkClaims(const Block& b, const BlockCmds& c);
   bool resolve(const Block& b, const Word& w, double& v);
@@ -186,7 +193,7 @@ private:
   bool feedWarned_ = false;
 
   // Output.
-  int32_t objNo_ = 0;
+  uint32_t objNo_ = 0;
   bool havePending_ = false;    // a spline piece waiting for its successor
   Element pending_;
   bool lastTangentValid_ = false;
