@@ -1,4 +1,5 @@
 #include "driver/Driver.h"
+#include "stdlib-motion/cnc/Decoder.h"
 #include "config/ConfigSchema.h"
 #include "sema/Model.h"
 
@@ -98,6 +99,14 @@ void Compilation::addBuffer(const std::string& name, std::string text) {
   files_.push_back(sm_.addBuffer(name, std::move(text)));
 }
 
+namespace {
+// G-code programs by their extension (docs/cnc.md): .cnc (CODESYS / Moons), .ngc, .nc.
+bool isGCodeFile(const fs::path& p) {
+  const std::string ext = asciiLower(p.extension().string());
+  return ext == ".cnc" || ext == ".ngc" || ext == ".nc";
+}
+}  // namespace
+
 bool Compilation::addPath(const std::string& path) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) {
@@ -125,6 +134,12 @@ bool Compilation::addPath(const std::string& path) {
     projectLibraries_.insert(projectLibraries_.end(), pc.libraries.begin(), pc.libraries.end());
     bool ok = true;
     for (const std::string& s : pc.sources) ok = addPath(s) && ok;
+    // The project's G-code programs: nc/*.cnc, *.ngc, *.nc (docs/cnc.md).
+    std::vector<std::string> nc;
+    for (const fs::directory_entry& e : fs::directory_iterator(fs::path(path) / "nc", ec))
+      if (e.is_regular_file(ec) && isGCodeFile(e.path())) nc.push_back(e.path().string());
+    std::sort(nc.begin(), nc.end());
+    for (const std::string& s : nc) ok = addPath(s) && ok;
     if (!pc.tasksSource.empty()) {
       addBuffer((fs::path(path) / "project.toml [[task]]").string(), pc.tasksSource);
       tasksFile_ = files_.back();
@@ -139,8 +154,56 @@ bool Compilation::addPath(const std::string& path) {
     diags_.error(SourceLoc{}, path + ": " + error, "input");
     return false;
   }
-  files_.push_back(id);
+  (isGCodeFile(path) ? gcodeFiles_ : files_).push_back(id);
   return true;
+}
+
+namespace {
+// `stc check` knows a $name$ of a G-code program when a global variable has that name
+// (x or GVL.x, any case); its value comes at run time, so it reads as 0 here and the
+// geometry of a block with variables is left to the decoder at run time.
+class CheckedVariables : public cnc::VariableAccess {
+public:
+  explicit CheckedVariables(ast::ASTContext& ast) {
+    for (const ast::SourceUnit& u : ast.units())
+      for (const ast::Decl* d : u.decls)
+        if (auto* g = ast::dyn_cast<ast::GlobalVarDecl>(d))
+          for (const ast::VarDecl* v : g->block.vars) {
+            names_.insert(asciiLower(v->name.name));
+            if (!g->listName.name.empty()) names_.insert(asciiLower(g->listName.name + "." + v->name.name));
+          }
+  }
+  bool read(std::string_view name, double& v) override {
+    v = 0;
+    return names_.count(asciiLower(std::string(name))) != 0;
+  }
+  bool write(std::string_view name, double) override { return names_.count(asciiLower(std::string(name))) != 0; }
+
+private:
+  std::set<std::string> names_;
+};
+}  // namespace
+
+void Compilation::checkGCode() {
+  CheckedVariables vars(*ast_);
+  for (uint32_t file : gcodeFiles_) {
+    DiagnosticsEngine d(sm_);
+    d.opts.errorLimit = 0;
+    cnc::decodeAll(sm_, file, d, cnc::DecoderOptions{}, &vars);
+    const std::string_view text = sm_.file(file).text;
+    for (const Diagnostic& g : d.diagnostics()) {
+      // In a block with $variables$ only the syntax and the names can be checked now.
+      const size_t begin = text.rfind('\n', g.loc.offset ? g.loc.offset - 1 : 0);
+      const size_t end = text.find('\n', g.loc.offset);
+      const std::string_view line = text.substr(begin == std::string_view::npos ? 0 : begin + 1,
+                                                (end == std::string_view::npos ? text.size() : end) - (begin == std::string_view::npos ? 0 : begin + 1));
+      const bool variable = line.find('$') != std::string_view::npos;
+      if (variable && g.code != "gcode-syntax" && g.code != "gcode-variable" && g.code != "gcode-unknown-word" &&
+          g.code != "gcode-unknown-code" && g.code != "gcode-duplicate-n" && g.code != "gcode-duplicate-word")
+        continue;
+      diags_.commit(g);
+    }
+  }
 }
 
 
@@ -343,11 +406,13 @@ bool Compilation::check(const CompileOptions& opts) {
     for (const Diagnostic& d : semaDiags.diagnostics())
       if (!((d.code == "undeclared-name" || d.code == "unknown-type") && namesAny(d.message, dropped))) diags_.commit(d);
     stats_.semaSeconds = std::chrono::duration<double>(clock::now() - t1).count();
+    checkGCode();
     return false;
   }
   sema_ = std::make_unique<sema::Sema>(*ast_, diags_, so);
   bool ok = sema_->run();
   stats_.semaSeconds = std::chrono::duration<double>(clock::now() - t1).count();
+  checkGCode();
   return ok && !diags_.hasErrors();
 }
 

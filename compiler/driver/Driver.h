@@ -70,6 +70,9 @@ public:
   bool addPath(const std::string& path);
   // The files added by addPath/addBuffer (not the libraries), in order.
   const std::vector<uint32_t>& inputFiles() const { return files_; }
+  // G-code programs (.cnc, .ngc, .nc files, a project's nc/ directory): check() decodes them
+  // (docs/cnc.md) and reports their errors with the ST ones.
+  const std::vector<uint32_t>& gcodeFiles() const { return gcodeFiles_; }
   // Adds an in-memory file (tests, benchmarks, fuzzing).
   void addBuffer(const std::string& name, std::string text);
 
@@ -88,6 +91,8 @@ private:
   // Owns the symbols and types the AST is annotated with: lives as long as the AST.
   std::unique_ptr<sema::Sema> sema_;
   std::vector<uint32_t> files_;
+  std::vector<uint32_t> gcodeFiles_;
+  void checkGCode();
   struct Imports;                       // what the XML importers found (Driver.cpp)
   std::unique_ptr<Imports> imports_;
   bool addImported(const std::string& path);
