@@ -14,21 +14,26 @@ using namespace detail;
 
 // ---------------------------------------------------------------- motion
 
+// The centre word of coordinate k (I, J, K): absolute (G98, with the offset) or relative to `from` (G99).
+bool Decoder::centreWord(const Block& b, int k, double from, double& out) {
+  const char l = "IJK"[k];
+  double v;
+  if (!wordValue(b, l, v)) return false;
+  if (std::fabs(v) > kMaxCoord) {
+    rep_.error(b.word(l).begin, b.word(l).end, std::string(1, l) + " is out of range (magnitude above 1e9)", "gcode-range");
+    return false;
+  }
+  out = centreAbsolute_ ? v + offsetVec_[k] : from + v;
+  return true;
+}
+
 bool Decoder::centreOf(const Block& b, Vec3& c, bool& any) {
   Vec3 s = xyz(pos_);
   c = s;
   any = false;
   for (int k = 0; k < 3; ++k) {
-    char l = "IJK"[k];
-    if (!b.has(l)) continue;
-    double v;
-    if (!wordValue(b, l, v)) return false;
-    if (std::fabs(v) > kMaxCoord) {
-      rep_.error(b.word(l).begin, b.word(l).end, std::string(1, l) + " is out of range (magnitude above 1e9)",
-                 "gcode-range");
-      return false;
-    }
-    c[k] = centreAbsolute_ ? v + offsetVec_[k] : s[k] + v;
+    if (!b.has("IJK"[k])) continue;
+    if (!centreWord(b, k, s[k], c[k])) return false;
     any = true;
   }
   return true;
@@ -187,18 +192,8 @@ bool Decoder::buildEllipse(const Block& b, const Cmd& cmd, const Pos& tgt, Eleme
   }
   const Vec3 S = xyz(pos_), T3 = xyz(tgt);
   double c[2] = {S[0], S[1]};
-  for (int k = 0; k < 2; ++k) {
-    char l = "IJ"[k];
-    if (!b.has(l)) continue;
-    double v;
-    if (!wordValue(b, l, v)) return false;
-    if (std::fabs(v) > kMaxCoord) {
-      rep_.error(b.word(l).begin, b.word(l).end, std::string(1, l) + " is out of range (magnitude above 1e9)",
-                 "gcode-range");
-      return false;
-    }
-    c[k] = centreAbsolute_ ? v + offsetVec_[k] : S[k] + v;
-  }
+  for (int k = 0; k < 2; ++k)   // (K is the main axis' direction here, not a centre word)
+    if (b.has("IJ"[k]) && !centreWord(b, k, S[k], c[k])) return false;
   double kdeg = 0;
   if (b.has('K')) {
     if (!wordValue(b, 'K', kdeg)) return false;

@@ -150,6 +150,7 @@ private:
   bool buildEllipse(const Block& b, const Cmd& cmd, const Pos& tgt, Element& e, bool& asLine);
   bool buildParabola(const Block& b, const Cmd& cmd, const Pos& tgt, Element& e);
   bool centreOf(const Block& b, Vec3& c, bool& any);
+  bool centreWord(const Block& b, int k, double from, double& out);
   void emit(ElementQueue& out, const Element& e);
   void flushPending(ElementQueue& out, const Element* next);
   void finish(ElementQueue& out);
