@@ -170,6 +170,7 @@ public:
         if (auto* g = ast::dyn_cast<ast::GlobalVarDecl>(d))
           for (const ast::VarDecl* v : g->block.vars) {
             names_.insert(asciiLower(v->name.name));
+            spelled_.push_back(v->name.name);
             if (!g->listName.name.empty()) names_.insert(asciiLower(g->listName.name + "." + v->name.name));
           }
   }
@@ -178,9 +179,11 @@ public:
     return names_.count(asciiLower(std::string(name))) != 0;
   }
   bool write(std::string_view name, double) override { return names_.count(asciiLower(std::string(name))) != 0; }
+  std::string suggest(std::string_view name) override { return closestMatch(name, spelled_); }
 
 private:
   std::set<std::string> names_;
+  std::vector<std::string> spelled_;   // as declared
 };
 }  // namespace
 

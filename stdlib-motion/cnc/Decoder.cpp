@@ -250,7 +250,9 @@ bool Decoder::resolve(const Block& b, const Word& w, double& v) {
     return false;
   }
   if (!vars_->read(name, v)) {
-    rep_.error(w.begin, w.end, "unknown variable '$" + std::string(name) + "$'", "gcode-variable");
+    const std::string near = vars_->suggest(name);
+    rep_.error(w.begin, w.end, "unknown variable '$" + std::string(name) + "$'" + (near.empty() ? "" : "; did you mean '$" + near + "$'?"),
+               "gcode-variable");
     return false;
   }
   if (w.negate) v = -v;

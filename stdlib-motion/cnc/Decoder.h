@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -37,6 +38,8 @@ public:
   virtual bool read(std::string_view name, double& value) = 0;
   // G36/G37 O$name$: stores a value; false if the variable cannot be written.
   virtual bool write(std::string_view name, double value) = 0;
+  // A known name close to an unknown one, for "did you mean" (empty: none).
+  virtual std::string suggest(std::string_view name) { return {}; }
 };
 
 struct DecoderOptions {
