@@ -7,8 +7,29 @@
 # tools/fuzz.sh --config [SECONDS] [ARGS...]: the mutation fuzzer of project.toml and
 # scenarios/*.toml instead (tools/fuzz_config.py on build/stc: mutated example projects
 # through stc check / stc test; a signal, abort or timeout fails).
+# tools/fuzz.sh --gcode [SECONDS]: the G-code lexer, parser and decoder (tests/fuzz/gcode_fuzz.cpp,
+# docs/cnc.md); crashes land in build-fuzz/gcode-crashes/, minimised ones go to
+# tests/fuzz/gcode_regressions/ (replayed by the fuzz/gcode-replay test).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+configure_fuzz_build() {
+  if [ ! -f build-fuzz/build.ninja ]; then
+    CC=clang-19 CXX=clang++-19 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+      -DSTC_FUZZ=ON -DSTC_SANITIZE=ON -DSTC_BENCHMARKS=OFF -DSTC_WERROR=OFF \
+      -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link"
+  fi
+}
+if [ "${1:-}" = "--gcode" ]; then
+  SECONDS_TO_RUN=${2:-600}
+  configure_fuzz_build
+  cmake --build build-fuzz --target stc_fuzz_gcode
+  mkdir -p build-fuzz/gcode-corpus build-fuzz/gcode-crashes
+  find tests/cnc -name '*.cnc' -size -16k -exec cp {} build-fuzz/gcode-corpus/ \; 2>/dev/null || true
+  build-fuzz/tests/fuzz/stc_fuzz_gcode build-fuzz/gcode-corpus tests/fuzz/gcode_regressions -max_len=4096 -timeout=10 \
+    -rss_limit_mb=4096 -max_total_time="$SECONDS_TO_RUN" -artifact_prefix=build-fuzz/gcode-crashes/ -print_final_stats=1 2>&1 |
+    tee build-fuzz/gcode-fuzz.log | tail -25
+  exit 0
+fi
 if [ "${1:-}" = "--config" ]; then
   shift
   SECONDS_TO_RUN=${1:-600}
@@ -17,11 +38,7 @@ if [ "${1:-}" = "--config" ]; then
   exec python3 tools/fuzz_config.py "$SECONDS_TO_RUN" --stc build/stc "$@"
 fi
 SECONDS_TO_RUN=${1:-600}
-if [ ! -f build-fuzz/build.ninja ]; then
-  CC=clang-19 CXX=clang++-19 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DSTC_FUZZ=ON -DSTC_SANITIZE=ON -DSTC_BENCHMARKS=OFF -DSTC_WERROR=OFF \
-    -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link"
-fi
+configure_fuzz_build
 cmake --build build-fuzz --target stc_fuzz_frontend
 mkdir -p build-fuzz/corpus build-fuzz/crashes
 find tests projects stdlib-motion -name '*.st' -size -16k -exec cp {} build-fuzz/corpus/ \; 2>/dev/null || true
