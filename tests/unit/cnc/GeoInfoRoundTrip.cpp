@@ -38,17 +38,23 @@ const char* kProgram =
     "G0 X100 Y40\n"
     "G98 G8 X90 Y50 I90 J40 K0\n"                   // ellipse
     "G9 X80 Y40 I90 J40 K30 R0.5\n"
-    "G99 G41 D2.5 G51 D1 G61\n"
+    "G99 G41 D2.5\n"
+    "G51 D1\n"
+    "G61\n"
     "G1 X90 Y45\n"
     "M7 K1.5 L-2.25\n"
     "G4 T1.5\n"
     "G75\n"
     "G92 X0 Y0\n"
-    "G40 G50 G60 G1 X1 Y1 U4\n";
+    "G40\n"
+    "G50\n"
+    "G60\n"
+    "G1 X1 Y1 W4\n";
 
 TEST(GeoInfoRoundTrip, EveryElementTypeIsExact) {
   Decoded d(kProgram);
-  ASSERT_EQ(d.errors(), 0u) << (d.heads().empty() ? "" : d.heads()[0]);
+  for (const std::string& h : d.heads()) ADD_FAILURE() << h;
+  ASSERT_EQ(d.errors(), 0u);
   std::set<MoveType> types;
   for (const Element& e : d.els) {
     types.insert(e.type);
@@ -64,7 +70,7 @@ TEST(GeoInfoRoundTrip, EveryElementTypeIsExact) {
     EXPECT_EQ(g.iMoveType, static_cast<int16_t>(e.type));
     EXPECT_EQ(g.piDestPos.dX, e.end[AxX]);
     EXPECT_EQ(g.piDestPos.dA, e.end[AxA]);
-    EXPECT_EQ(g.piDestPos.dA3, e.end[AxU]);
+    EXPECT_EQ(g.piDestPos.dA5, e.end[AxW]);
     EXPECT_EQ(g.piStartPos.dY, e.start[AxY]);
     if (e.type == MoveType::Clw || e.type == MoveType::Cclw) {
       EXPECT_EQ(g.dP1, e.arc.centre[0]);
