@@ -181,7 +181,7 @@ void startDecoder(sm3::SMC_NCDecoder* self, MotionSession& s) {
   if (!finite(self->piStartPosition)) return stop(self, nullptr, kInvalidParameter);
 
   // A new decoder (the previous one, if any, is dropped).
-  s.instanceStates.erase(self->__handle);
+  if (s.instanceState<NcState>(self->__handle, self)) s.instanceStates.erase(self->__handle);   // never another instance's (a copy)
   auto owned = std::make_unique<NcState>();
   NcState& st = *owned;
   st.owner = self;
