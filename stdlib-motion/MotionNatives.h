@@ -187,6 +187,23 @@ public:
     std::string path;   // resolved, for xExclusive
   };
   std::vector<OpenFile> files;
+
+  // Per-instance C++ state of face blocks that need more than their ST variables (the
+  // G-code decoder of SMC_NCDecoder): by an id the instance keeps in an internal ULINT.
+  // Each state records the instance it belongs to, so a copied or stale id finds nothing.
+  struct InstanceState {
+    virtual ~InstanceState() = default;
+    const void* owner = nullptr;
+  };
+  std::unordered_map<uint64_t, std::unique_ptr<InstanceState>> instanceStates;
+  uint64_t nextInstanceState = 1;
+  // The state of `owner` under `id` if it is of type T, else null.
+  template <class T>
+  T* instanceState(uint64_t id, const void* owner) {
+    auto it = instanceStates.find(id);
+    if (it == instanceStates.end() || it->second->owner != owner) return nullptr;
+    return dynamic_cast<T*>(it->second.get());
+  }
   ~MotionSession() override;
 
 private:

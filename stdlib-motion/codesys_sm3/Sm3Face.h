@@ -169,6 +169,7 @@ void axisFb(T* self, F call) {
 // Per-family registration (called at the start of registerSm3Natives()).
 void registerSm3DiagNatives(MotionLibrary& lib);
 void registerSm3FileNatives(MotionLibrary& lib);    // Sm3File.cpp (CAA File: FILE.*)
+void registerSm3NcNatives(MotionLibrary& lib);      // Sm3NcDecoder.cpp (SMC_ReadNCFile, SMC_NCDecoder)
 
 // Like axisFb, for bodies that take the FB's kernel slot: call(kernel, slot, axis, ctx).
 template <class T, class F>
