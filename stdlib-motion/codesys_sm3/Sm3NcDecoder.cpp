@@ -32,6 +32,7 @@ enum : int16_t {
   kInvalidParameter = 1820,   // SMC_OS_INVALID_PARAMETER: start position not finite or beyond 1e10
   kFileDoesntExist = 2000,    // SMC_RNCF_FILE_DOESNT_EXIST
   kNoBuffer = 2001,           // SMC_RNCF_NO_BUFFER
+  kNotVarList = 2005,         // SMC_RNCF_NOT_VARLIST
   kBufferTooSmall = 2002,     // SMC_RNCF_BUFFER_TOO_SMALL
 };
 
@@ -74,6 +75,8 @@ void SMC_ReadNCFile(sm3::SMC_ReadNCFile* self) {
     self->ErrorID = id;
   };
   MotionSession& s = MotionSession::current();
+  // Variable lists are not supported yet (docs/cnc.md): refused rather than ignored.
+  if (self->pvl) return fail(kNotVarList);
   if (!self->pBuffer || self->dwBufferSize == 0 || !s.inImage(self->pBuffer, self->dwBufferSize)) return fail(kNoBuffer);
   const std::string name = getString(self->sFileName);
   std::string why;
