@@ -406,16 +406,21 @@ Address CodeGen::emitAddr(const Expr* e) {
       std::string arrName;
       if (auto* n = dyn_cast<NameExpr>(ix->base)) arrName = n->ident.name;
       else if (auto* mm = dyn_cast<MemberExpr>(ix->base)) arrName = mm->member.name;
+      bool flexible = false;
       for (size_t k = 0; k < ix->indices.size(); ++k) {
         const sema::Dim& d = bt->dims[k];
         llvm::Value* i = emitValue(ix->indices[k], elementary(TypeKind::LInt));
         if (Symbol* cb = implicitCheck("CHECKBOUNDS"))
           i = callImplicitCheck(cb, {i, b_.getInt64(static_cast<uint64_t>(d.lo)), b_.getInt64(static_cast<uint64_t>(d.hi))}, true);
-        if (opts_.checks) checkIndex(i, d.lo, d.hi, site(ix->indices[k], arrName));
+        // p^[i] on POINTER TO ARRAY[0..0] OF T: the flexible-array idiom of CODESYS libraries
+        // (SMC_OUTQUEUE.pbyBuffer ...): the pointer says where, not how many (docs/dialect.md).
+        flexible = isa<DerefExpr>(ix->base) && bt->dims.size() == 1 && d.lo == 0 && d.hi == 0;
+        if (opts_.checks && !flexible) checkIndex(i, d.lo, d.hi, site(ix->indices[k], arrName));
         llvm::Value* rel = b_.CreateSub(i, b_.getInt64(static_cast<uint64_t>(d.lo)));
         offset = b_.CreateAdd(offset, b_.CreateMul(rel, b_.getInt64(strides[k])));
       }
-      return Address{b_.CreateInBoundsGEP(i8_, base.ptr, offset), partial ? e->type : bt->element};
+      llvm::Value* at = flexible ? b_.CreateGEP(i8_, base.ptr, offset) : b_.CreateInBoundsGEP(i8_, base.ptr, offset);
+      return Address{at, partial ? e->type : bt->element};
     }
     case Expr::Deref: {
       auto* d = cast<DerefExpr>(e);

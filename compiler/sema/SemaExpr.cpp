@@ -844,7 +844,9 @@ const Type* SemaImpl::checkIndex(IndexExpr* e, const Context& ctx) {
         .range(e->range);
     return types_.error();
   }
-  for (size_t k = 0; k < e->indices.size(); ++k) {
+  // p^[i] on POINTER TO ARRAY[0..0] OF T is the flexible-array idiom (CodeGen: no bounds check).
+  const bool flexible = isa<DerefExpr>(e->base) && bt->dims.size() == 1 && bt->dims[0].lo == 0 && bt->dims[0].hi == 0;
+  for (size_t k = 0; k < e->indices.size() && !flexible; ++k) {
     const Dim& d = bt->dims[k];
     if (d.star) continue;
     if (auto v = evalConst(e->indices[k], ctx); v && v->kind == ConstValue::Int) {
