@@ -62,6 +62,9 @@ enum Mark : uint16_t {
   MarkRoundStart = 1u << 5,     // G52
   MarkLoopAvoidEnd = 1u << 6,   // G60
   MarkLoopAvoidStart = 1u << 7, // G61
+  // Set by SMC_CheckVelocities once the element's end velocity (velEnd) is final;
+  // the interpolator takes only elements that carry it (docs/cnc.md).
+  MarkVelChecked = 1u << 8,
 };
 
 enum class ToolSide : uint8_t { Off, Left, Right };       // G40 / G41 / G42
@@ -114,6 +117,8 @@ struct Element {
   uint16_t axesUsed = 0;         // bit per Axis programmed so far (wAuxData-like)
   Pos start{}, end{};            // machine coordinates
   double vel = 0, acc = 0, dec = 0;   // F, E, E- (G0: FF, EF, EF- when set); 0 = never programmed
+  double velEnd = 0;             // velocity allowed at the end (the junction to the next element):
+                                 // written by SMC_CheckVelocities (dVelEnd), 0 from the decoder
   double s = 0;                  // S word (modal), stored as given
   double length = 0;             // path length over X/Y/Z (over all axes if X/Y/Z stay)
   // Preprocessing state in force for this element (modal).

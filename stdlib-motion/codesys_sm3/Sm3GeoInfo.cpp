@@ -146,7 +146,7 @@ void toGeoInfo(const Element& e, sm3::SMC_GEOINFO& g) {
   p[16] = e.l;
   p[17] = e.dwell;
   g.dVel = e.vel;
-  g.dVelEnd = 0;
+  g.dVelEnd = e.velEnd;
   g.dAccel = e.acc;
   g.dDecel = e.dec;
   g.dLength = e.length;
@@ -186,6 +186,7 @@ bool fromGeoInfo(const sm3::SMC_GEOINFO& g, Element& e) {
   fromPos(g.piStartPos, e.start);
   fromPos(g.piDestPos, e.end);
   e.vel = g.dVel;
+  e.velEnd = g.dVelEnd;
   e.acc = g.dAccel;
   e.dec = g.dDecel;
   e.s = g.dS;
@@ -259,7 +260,7 @@ bool same(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }   /
 bool sameElement(const Element& a, const Element& b) {
   bool ok = a.objNo == b.objNo && a.line == b.line && a.column == b.column && a.blockNo == b.blockNo && a.type == b.type &&
             a.plane == b.plane && a.marks == b.marks && a.axesUsed == b.axesUsed && same(a.start, b.start) && same(a.end, b.end) &&
-            same(a.vel, b.vel) && same(a.acc, b.acc) && same(a.dec, b.dec) && same(a.s, b.s) && same(a.length, b.length) &&
+            same(a.vel, b.vel) && same(a.velEnd, b.velEnd) && same(a.acc, b.acc) && same(a.dec, b.dec) && same(a.s, b.s) && same(a.length, b.length) &&
             a.toolSide == b.toolSide && a.smoothing == b.smoothing && a.loopAvoid == b.loopAvoid && same(a.toolRadius, b.toolRadius) &&
             same(a.smoothDist, b.smoothDist) && a.m == b.m && same(a.k, b.k) && same(a.l, b.l) && same(a.dwell, b.dwell) &&
             a.switchCount == b.switchCount;
