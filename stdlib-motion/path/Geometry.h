@@ -1,5 +1,6 @@
 // Path geometry of axis-group moves: segments in an N-dimensional coordinate
-// space (N <= 9: X, Y, Z, A, B, C and up to three auxiliary axes), each
+// space (N <= 11: X, Y, Z, A, B, C and up to five auxiliary axes; axis groups
+// use up to 9, the CNC interpolator 11: X Y Z A B C P Q U V W), each
 // parametrised by its path length s (docs/path.md, "Geometry").
 //
 //  - The Cartesian part X/Y/Z carries the geometry and defines the path length
@@ -29,13 +30,13 @@
 
 namespace stc::motion::path {
 
-constexpr int kMaxCoords = 9;   // X, Y, Z, A, B, C, aux1..aux3
+constexpr int kMaxCoords = 11;   // X, Y, Z, A, B, C, aux1..aux5
 using Vec = std::array<double, kMaxCoords>;
 
 enum class GeoStatus : uint8_t {
   Ok,
   NonFinite,        // a coordinate, radius, angle or ratio is NaN or infinite
-  BadDims,          // dims outside 1..9, or a circle/ellipse with fewer than 2 Cartesian coordinates
+  BadDims,          // dims outside 1..11, or a circle/ellipse with fewer than 2 Cartesian coordinates
   ZeroLength,       // start and end coincide (a line), a zero radius, two equal spline points
   Collinear,        // border (three-point) arc through collinear points
   RadiusTooSmall,   // radius smaller than half the chord

@@ -363,6 +363,14 @@ GeoStatus Planner::buildGeometry(const MoveSpec& m, const Vec& start, const Vec*
       return splineThrough(start, {abs.data(), static_cast<size_t>(np)}, dims_, inTangent, nullptr,
                            {scratchSegs_.data(), static_cast<size_t>(np)}, splineScratch_);
     }
+    case MoveKind::Prebuilt: {
+      if (!m.segment || m.segment->dims() != dims_) return GeoStatus::BadDims;
+      const Vec& a = m.segment->startPoint();
+      for (int i = 0; i < dims_; ++i)
+        if (!(std::fabs(a[i] - start[i]) <= 1e-9 * std::max(1.0, std::fabs(start[i])))) return GeoStatus::BadParameter;
+      scratchSegs_[0] = *m.segment;
+      return GeoStatus::Ok;
+    }
   }
   return GeoStatus::BadParameter;
 }
@@ -550,7 +558,14 @@ AppendResult Planner::append(const MoveSpec& m) {
     }
   };
 
-  if (tailIdx >= 0 && !aborting && m.buffer != BufferMode::Buffered) {
+  if (tailIdx >= 0 && !aborting && m.buffer == BufferMode::Buffered && m.junctionVel > 0 &&
+      std::isfinite(m.junctionVel)) {
+    Slot sFirst = proto;
+    sFirst.geo = scratchSegs_[0];
+    computeCaps(sFirst);
+    Slot& T = at(tailIdx);
+    T.juncCap = std::min({T.vcap, sFirst.vcap, m.junctionVel});
+  } else if (tailIdx >= 0 && !aborting && m.buffer != BufferMode::Buffered) {
     Slot& T = at(tailIdx);
     Segment& S = scratchSegs_[0];
     Slot sFirst = proto;
@@ -670,7 +685,7 @@ AppendResult Planner::append(const MoveSpec& m) {
   if (holding_) return r;   // a feed-hold ramp runs; the plan resumes later
   // the running plan: replan when it covers the old tail or its end velocity changed
   const bool covers = tailIdx >= 0 && tailIdx < planSlots_;
-  const bool endChanged = planSlots_ - 1 < oldCount && at(planSlots_ - 1).vEndMax != savedVEnd_[planSlots_ - 1];
+  const bool endChanged = planSlots_ > 0 && planSlots_ - 1 < oldCount && at(planSlots_ - 1).vEndMax != savedVEnd_[planSlots_ - 1];
   if (covers || endChanged) {
     if (!replan()) {
       if (blendUsed) {
@@ -857,6 +872,10 @@ const Sample& Planner::advance(double dt) {
     tReal += (tEnd - tau_) / f;
     R = std::max(0.0, dt - tReal);
     tau_ = tEnd;
+    if (count_ == 0) {   // every segment passed (the plan's end within rounding): idle
+      planned_ = false;
+      break;
+    }
     if (tau_ < dur) break;
     // the plan is complete
     const Kinematic e = prof_.end();

@@ -38,7 +38,10 @@ struct Dynamics {
   double vel = 0, acc = 0, dec = 0, jerk = 0;
 };
 
-enum class MoveKind : uint8_t { Line, ArcBorder, ArcCenter, ArcRadius, Ellipse, Spline };
+enum class MoveKind : uint8_t {
+  Line, ArcBorder, ArcCenter, ArcRadius, Ellipse, Spline,
+  Prebuilt,   // `segment`, built by the caller from the end of the queue (the CNC interpolator)
+};
 
 struct MoveSpec {
   MoveKind kind = MoveKind::Line;
@@ -55,6 +58,11 @@ struct MoveSpec {
   double majorAngle = 0;     // Ellipse: angle of the major axis [rad]
   double ratio = 1;          // Ellipse: minor / major
   std::span<const Vec> points;   // Spline: the points after the start (C2 cubic spline)
+  const Segment* segment = nullptr;   // Prebuilt: must start at the end of the queue (1e-9)
+  // Buffered only: > 0 lets the path pass the junction with the previous move at up to this
+  // velocity instead of stopping (the caller has judged the corner: the CNC interpolator
+  // passes SMC_CheckVelocities' end velocity); the planner still applies its caps.
+  double junctionVel = 0;
   Dynamics dyn;
   BufferMode buffer = BufferMode::Aborting;
   TransitionMode transition = TransitionMode::None;
@@ -103,7 +111,7 @@ struct AxisLimits {
 };
 
 struct PlannerConfig {
-  int dims = 3;             // coordinates 1..9
+  int dims = 3;             // coordinates 1..11
   int capacity = 128;       // segments in the queue (moves, blends, spline pieces)
   AxisLimits axes;
 };

@@ -197,7 +197,7 @@ TEST(PathGeometry, DegenerateInputGivesAStatusNeverNaN) {
   EXPECT_EQ(Segment::arcCenter(V(0, 0), V(0, 0), V(0, 0), V(0, 0, 1), true, 0, 2, s), GeoStatus::ZeroLength);
   EXPECT_EQ(Segment::arcRadius(V(0, 0), V(1, 0), nan, V(0, 0, 1), true, false, 0, 2, s), GeoStatus::NonFinite);
   EXPECT_EQ(Segment::arcRadius(V(0, 0), V(0, 0), 1, V(0, 0, 1), true, false, 0, 2, s), GeoStatus::ZeroLength);
-  EXPECT_EQ(Segment::line(V(0, 0), V(1, 0), 10, s), GeoStatus::BadDims);
+  EXPECT_EQ(Segment::line(V(0, 0), V(1, 0), kMaxCoords + 1, s), GeoStatus::BadDims);
   std::vector<Vec> pts = {V(1, 1), V(1, 1)};
   std::vector<Segment> out(2);
   SplineScratch sc;

@@ -1,0 +1,203 @@
+// SMC_Interpolator and SMC_GetMParameters (sm3_cnc_interpolator.st; docs/cnc.md,
+// "SMC_Interpolator"): the checked queue of a program run by stdlib-motion/cnc's
+// Interpolator, one set point per call.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "stdlib-motion/cnc/Interpolator.h"
+#include "stdlib-motion/codesys_sm3/Sm3Face.h"
+#include "stdlib-motion/codesys_sm3/Sm3GeoInfo.h"
+#include "stdlib-motion/codesys_sm3/Sm3Queue.h"
+
+using namespace stc::motion;
+using namespace stc::motion::sm3face;
+
+namespace {
+
+constexpr int16_t kNoOutQueue = 1501;     // SMC_NO_OUTQUEUE_TYPE: no queue, or not one
+constexpr int16_t kQueueChanged = 1801;   // SMC_SA_QUEUE_CHANGED_DURING_OP
+constexpr uint32_t kMaxIpoTimeUs = 1000000;
+
+struct IpoState : MotionSession::InstanceState {
+  std::unique_ptr<stc::cnc::Interpolator> ipo;
+  sm3::SMC_OUTQUEUE* queue = nullptr;
+  uint32_t fed = 0;          // queue elements (from nReadPos) handed to the interpolator
+  double wayBase = 0;        // dLastWayPos at the rising edge
+  bool stopping = false;     // bExecute fell: stop along the path, then drop the run
+};
+
+void clearFlags(sm3::SMC_Interpolator* self) {
+  self->bDone = self->bBusy = self->bError = false;
+  self->wErrorID = 0;
+}
+
+void dropState(MotionSession& s, sm3::SMC_Interpolator* self) {
+  if (s.instanceState<IpoState>(self->__handle, self)) s.instanceStates.erase(self->__handle);
+  self->__handle = 0;
+}
+
+void publish(sm3::SMC_Interpolator* self, const IpoState& st, const stc::cnc::IpoOutput& o) {
+  sm3::SMC_POSINFO& p = self->piSetPosition;
+  p.dX = o.pos[stc::cnc::AxX];
+  p.dY = o.pos[stc::cnc::AxY];
+  p.dZ = o.pos[stc::cnc::AxZ];
+  p.dA = o.pos[stc::cnc::AxA];
+  p.dB = o.pos[stc::cnc::AxB];
+  p.dC = o.pos[stc::cnc::AxC];
+  p.dA1 = o.pos[stc::cnc::AxP];
+  p.dA2 = o.pos[stc::cnc::AxQ];
+  p.dA3 = o.pos[stc::cnc::AxU];
+  p.dA4 = o.pos[stc::cnc::AxV];
+  p.dA5 = o.pos[stc::cnc::AxW];
+  p.dA6 = 0;
+  self->iStatus = static_cast<int16_t>(o.status);
+  self->bWorking = o.working;
+  self->iActObjectSourceNo = static_cast<int16_t>(std::min<int32_t>(o.sourceLine, INT16_MAX));
+  self->dVel = o.vel;
+  self->vecActTangent.dX = o.tangent[0];
+  self->vecActTangent.dY = o.tangent[1];
+  self->vecActTangent.dZ = o.tangent[2];
+  self->iLastSwitch = o.lastSwitch;
+  self->dwSwitches = o.switches;
+  self->dWayPos = st.wayBase + o.wayPos;
+  self->wM = o.m;
+  self->__mK = o.mK;
+  self->__mL = o.mL;
+}
+
+void startRun(sm3::SMC_Interpolator* self, MotionSession& s) {
+  auto fail = [&](int16_t e) {
+    self->bError = true;
+    self->wErrorID = e;
+  };
+  if (!s.inImage(self, sizeof *self)) return fail(kNoOutQueue);
+  QueueView v;
+  if (openQueue(s, static_cast<sm3::SMC_OUTQUEUE*>(self->poqDataIn), v) != QueueCheck::Ok) return fail(kNoOutQueue);
+  if (self->dwIpoTime == 0 || self->dwIpoTime > kMaxIpoTimeUs) return fail(stc::cnc::kIpoIpoTimeZero);
+  if (!std::isfinite(self->dLastWayPos) || std::fabs(self->dLastWayPos) > 1e15) return fail(stc::cnc::kIpoInvalidParameter);
+  stc::cnc::IpoSettings cfg;
+  cfg.cycle = self->dwIpoTime * 1e-6;
+  cfg.mode = static_cast<stc::cnc::VelMode>(self->iVelMode);
+  cfg.jerk = self->dJerkMax;
+  int16_t err = 0;
+  auto ipo = std::make_unique<stc::cnc::Interpolator>(cfg, err);
+  if (err != 0) return fail(err);
+  auto owned = std::make_unique<IpoState>();
+  owned->owner = self;
+  owned->ipo = std::move(ipo);
+  owned->queue = v.queue();
+  owned->wayBase = self->dLastWayPos;
+  const uint64_t id = s.nextInstanceState++;
+  s.instanceStates[id] = std::move(owned);
+  self->__handle = id;
+  self->bBusy = true;
+  self->iLastSwitch = 0;
+  self->dwSwitches = 0;
+  self->wM = 0;
+}
+
+void SMC_Interpolator(sm3::SMC_Interpolator* self) {
+  MotionSession& s = MotionSession::current();
+  const bool edge = self->bExecute && !self->__prev;
+  self->__prev = self->bExecute;
+  IpoState* st = s.instanceState<IpoState>(self->__handle, self);
+  if (self->bAbort) {   // abandon the path where it stands (no ramp: after an emergency stop)
+    if (st) dropState(s, self);
+    clearFlags(self);
+    self->bWorking = false;
+    self->dVel = 0;
+    self->iStatus = static_cast<int16_t>(stc::cnc::IpoStatus::Unknown);
+    return;
+  }
+  if (edge) {
+    if (st) dropState(s, self);
+    clearFlags(self);
+    startRun(self, s);
+    st = s.instanceState<IpoState>(self->__handle, self);
+  }
+  if (!st) {
+    if (!self->bExecute) clearFlags(self);
+    return;
+  }
+  if (!self->bExecute) st->stopping = true;
+
+  stc::cnc::Interpolator& ipo = *st->ipo;
+  auto* q = static_cast<sm3::SMC_OUTQUEUE*>(self->poqDataIn);
+  QueueView v;
+  const QueueCheck qc = openQueue(s, q, v);
+  int16_t queueError = 0;
+  if (q != st->queue) queueError = kQueueChanged;
+  else if (qc != QueueCheck::Ok) queueError = qc == QueueCheck::Broken ? kQueueChanged : kNoOutQueue;
+  else if (st->fed > v.size()) queueError = kQueueChanged;   // a consumer took elements it does not own
+
+  if (queueError == 0 && ipo.error() == 0 && !st->stopping) {
+    if (st->fed < v.size() && q->byGenerator != kGenCheckVelocities) queueError = stc::cnc::kIpoNoCheckVelocities;
+    while (queueError == 0 && st->fed < v.size() && ipo.wantsMore()) {
+      const sm3::SMC_GEOINFO& g = v.at(st->fed);
+      if (!(g.wIntMark & stc::cnc::MarkVelChecked)) break;   // not final yet
+      stc::cnc::Element e;
+      if (!fromGeoInfo(g, e)) {
+        queueError = stc::cnc::kIpoPathExceeded;
+        break;
+      }
+      if (ipo.feed(e) != 0) break;
+      ++st->fed;
+    }
+    if (queueError == 0 && q->bEndOfList && st->fed == v.size()) ipo.endOfList();
+  }
+
+  stc::cnc::IpoControls c;
+  c.slowStop = self->bSlow_Stop || st->stopping || queueError != 0;
+  c.quickStop = self->bQuick_Stop;
+  c.emergencyStop = self->bEmergency_Stop;
+  c.waitAtNextStop = self->bWaitAtNextStop;
+  c.singleStep = self->bSingleStep;
+  c.acknM = self->bAcknM;
+  c.override = self->dOverride;
+  c.quickDecel = self->dQuickDeceleration;
+  const stc::cnc::IpoOutput& o = ipo.step(c);
+  if (queueError == 0) {
+    const int done = ipo.takeFinished();
+    for (int i = 0; i < done && st->fed > 0 && !v.empty(); ++i) {
+      v.pop();
+      --st->fed;
+    }
+  }
+  publish(self, *st, o);
+
+  const int16_t err = queueError != 0 ? queueError : ipo.error();
+  if (err != 0) {
+    self->bError = true;
+    self->wErrorID = err;
+    self->bBusy = false;
+  } else {
+    self->wErrorID = ipo.warning();   // SMC_INT_DATA_UNDERRUN while the queue runs dry
+    self->bDone = o.finished;
+    self->bBusy = !o.finished;
+  }
+  if (st->stopping && o.vel == 0) {   // bExecute FALSE: dropped once at rest
+    dropState(s, self);
+    clearFlags(self);
+    self->bWorking = false;
+  }
+}
+
+void SMC_GetMParameters(sm3::SMC_GetMParameters* self) {
+  const sm3::SMC_Interpolator* ipo = self->Interpolator;
+  const bool active = self->bEnable && ipo && ipo->wM != 0;
+  self->bMActive = active;
+  self->dK = active ? ipo->__mK : 0;
+  self->dL = active ? ipo->__mL : 0;
+  self->MParameters.dK = self->dK;
+  self->MParameters.dL = self->dL;
+}
+
+}  // namespace
+
+namespace stc::motion::sm3face {
+void registerSm3InterpolatorNatives(MotionLibrary& lib) {
+  STC_SM3_NATIVE(SMC_Interpolator, SMC_Interpolator)
+  STC_SM3_NATIVE(SMC_GetMParameters, SMC_GetMParameters)
+}
+}  // namespace stc::motion::sm3face
