@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include <tuple>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <sstream>
 
 #include "basic/Diagnostics.h"
@@ -658,7 +660,7 @@ std::vector<std::pair<double, double>> sampleElement(const cnc::Element& e, cnc:
   double turn = e.type == cnc::MoveType::Clw || e.type == cnc::MoveType::Cclw         ? std::fabs(e.arc.sweep)
                 : e.type == cnc::MoveType::EllClw || e.type == cnc::MoveType::EllCclw ? std::fabs(e.ellipse.sweepPhi)
                                                                                        : 0.0;
-  int n = std::clamp(static_cast<int>(std::ceil(turn / (M_PI / 8))), 16, 16 * 100);
+  int n = std::clamp(static_cast<int>(std::ceil(turn / (std::numbers::pi / 8))), 16, 16 * 100);
   auto prev = pts.back();
   for (int i = 1; i <= n; ++i) {
     double u0 = static_cast<double>(i - 1) / n, u1 = static_cast<double>(i) / n;
@@ -1230,6 +1232,14 @@ void PlotCommand::add(CLI::App& app) {
   cmd->add_option("--rapid", rapid, "Trace column that is TRUE while a G0 move runs: those parts of the --xy paths are dashed")
       ->type_name("COL")
       ->needs(xyOpt);
+  cmd->footer(
+      "Examples:\n"
+      "  stc plot trace.csv --vars Axis1.fSetPosition,Axis1.fSetVelocity\n"
+      "  stc plot trace.csv --xy X.fActPosition,Y.fActPosition\n"
+      "  stc plot --gcode part.cnc                   the program's X/Y tool path alone (part.svg)\n"
+      "  stc plot --gcode part.cnc --gcode-axes X,Z  the X/Z plane\n"
+      "  stc plot trace.csv --xy X.fActPosition,Y.fActPosition --gcode part.cnc --rapid MAIN.bRapid\n"
+      "G-code: feed moves solid, G0 dashed; decode errors are printed as by stc check (exit 1). See docs/cnc.md.");
 }
 
 bool parseXyPairs(const std::vector<std::string>& pairs, PlotOptions& options, std::string& error) {
