@@ -555,14 +555,15 @@ def case_gcode_errors():
     vars_ = os.path.join(GDIR, "vars.cnc")
     rc, out = stc("plot", "--gcode", vars_, "-o", svg)
     expect(rc == 1 and "unknown variable '$len$'" in out and "--gcode-var" in out, f"no values: {rc} {out}")
-    rc, out = stc("plot", "--gcode", vars_, "-o", svg, "--gcode-var", "LEN=20", "--gcode-var", "h=10", "--gcode-var", "$r$=6")
+    rc, out = stc("plot", "--gcode", vars_, "-o", svg, "--gcode-var", "LEN=20", "--gcode-var", "h=10", "--gcode-var", "$Radius$=6")
     expect(rc == 0, f"--gcode-var: {rc} {out}")
-    rc, out = stc("plot", "--gcode", vars_, "-o", svg, "--gcode-var", "len=20", "--gcode-var", "h=10", "--gcode-var", "rr=6")
-    expect(rc == 1 and "did you mean '$rr$'" in out, f"--gcode-var hint: {rc} {out}")
+    rc, out = stc("plot", "--gcode", vars_, "-o", svg, "--gcode-var", "len=20", "--gcode-var", "h=10", "--gcode-var", "radus=6")
+    expect(rc == 1 and "did you mean '$radus$'" in out, f"--gcode-var hint: {rc} {out}")
     good = os.path.join(SRC, "tests/cli/gcode_project/nc/good.cnc")
     rc, out = stc("plot", "--gcode", good, "-o", svg, "--gcode-var", "xPos=20", "--gcode-var", "GVL.xPos=20",
                   "--gcode-var", "radius=10")
-    expect(rc == 0 and len(program_paths(parse(svg))[1]) == 4, f"good.cnc: {rc} {out}")
+    # G0 X0 Y0 from the start position 0 is no move: the line, the arc, the line.
+    expect(rc == 0 and len(program_paths(parse(svg))[1]) == 3, f"good.cnc: {rc} {out}")
     for bad in ["x", "x=", "=1", "x=1e999", "x=abc"]:
         rc, out = stc("plot", "--gcode", vars_, "-o", svg, "--gcode-var", bad)
         expect(rc == 2 and "NAME=VALUE" in out, f"--gcode-var {bad}: {rc} {out}")
