@@ -396,6 +396,197 @@ def case_run_xy():
     print("ok")
 
 
+# --gcode: the commanded tool path of a G-code program (docs/cnc.md, "Seeing a program").
+GDIR = os.path.join(SRC, "tests/cli/gcode_plot")
+PART = os.path.join(GDIR, "part.cnc")
+# part.cnc's moves: source line -> (class, data-move, programmed end point in X/Y).
+PART_MOVES = {3: ("rapid", None, (10, 0)), 4: ("feed", "LIN", (50, 0)), 5: ("feed", "CCLW", (50, 30)),
+              6: ("feed", "LIN", (30, 30)), 7: ("feed", "SPLINE", (20, 40)), 8: ("feed", "SPLINE", (10, 30)),
+              9: ("feed", "LIN", (10, 0)), 10: ("rapid", None, (30, 15)), 11: ("feed", "LIN", (30, 15)),
+              12: ("feed", "CLW", (30, 15)), 13: ("rapid", None, (30, 15)), 14: ("feed", "ELLCCLW", (10, 15)),
+              15: ("rapid", None, (0, 0))}
+
+
+def program_paths(root):
+    progs = groups(root, "program")
+    expect(len(progs) == 1, f"one program group, got {len(progs)}")
+    out = []
+    for p in progs[0].iter(NS + "path"):
+        pts = [tuple(map(float, t.split(","))) for t in p.get("d").replace("M", " ").replace("L", " ").split()]
+        out.append((p, pts))
+    return progs[0], out
+
+
+def check_curve(pts, to_data, span, dist, what):
+    """Every point, and every chord's midpoint, within rounding (0.1 px) or 0.1 % of the span of the curve."""
+    for a, b in zip(pts, pts[1:]):
+        for q in (a, ((a[0] + b[0]) / 2, (a[1] + b[1]) / 2)):
+            d = dist(to_data(*q))
+            expect(d < 0.001 * span, f"{what}: {q} -> {to_data(*q)} is {d} off the curve (span {span})")
+    for q in pts:
+        expect(dist(to_data(*q)) < 0.0002 * span, f"{what}: sample {to_data(*q)} off the curve")
+
+
+def case_gcode_path():
+    svg = os.path.join(TMP, "part.svg")
+    rc, out = stc("plot", "--gcode", PART, "-o", svg)
+    expect(rc == 0 and out == "", f"exit {rc}: {out}")
+    root = parse(svg)
+    expect([g.get("data-kind") for g in groups(root, "panel")] == ["path"], "one path panel")
+    expect(texts(root, "title") == ["part.cnc"], f"title {texts(root, 'title')}")
+    expect(texts(root, "subtitle") == ["program: 13 moves (9 feed, 4 rapid), X/Y plane"], f"subtitle {texts(root, 'subtitle')}")
+    expect(texts(root, "legend") == ["commanded (feed)", "rapid (G0)"], f"legend {texts(root, 'legend')}")
+    expect(texts(root, "xlabel") == ["X"] and texts(root, "ylabel") == ["Y"], "axis labels")
+    expect(not groups(root, "path"), "no trace paths")
+    prog, paths = program_paths(root)
+    expect(prog.get("data-axes") == "X,Y" and prog.get("data-file") == PART, f"program {prog.attrib}")
+    sx, sy, to_data = axis_map(root)
+    expect(abs(sx + sy) < 1e-3 * abs(sx), f"scales differ: {sx} {sy}")
+    span = 560 / abs(sx)
+    lines = [int(p.get("data-line")) for p, _ in paths]
+    expect(lines == sorted(PART_MOVES), f"one path per move, in order: {lines}")
+    px = 0.08 / abs(sx)   # 0.1 px rounding of the SVG coordinates
+    for p, pts in paths:
+        cls, move, end = PART_MOVES[int(p.get("data-line"))]
+        expect(p.get("class") == cls and p.get("data-move") == move, f"line {p.get('data-line')}: {p.attrib}")
+        # Rapids dashed in their own colour, feeds solid.
+        expect((p.get("stroke-dasharray") is not None) == (cls == "rapid"), f"dash of {p.attrib}")
+        e = to_data(*pts[-1])
+        expect(abs(e[0] - end[0]) < px and abs(e[1] - end[1]) < px, f"line {p.get('data-line')} ends at {e}, not {end}")
+    expect(len({p.get("stroke") for p, _ in paths if p.get("class") == "rapid"} |
+               {p.get("stroke") for p, _ in paths if p.get("class") == "feed"}) == 2, "two colours")
+    by_line = {int(p.get("data-line")): pts for p, pts in paths}
+    # The half circle around (50, 15), radius 15, through (65, 15).
+    half = by_line[5]
+    check_curve(half, to_data, span, lambda q: abs(math.hypot(q[0] - 50, q[1] - 15) - 15), "G3 half circle")
+    expect(max(to_data(*q)[0] for q in half) > 65 - px, "the half circle bulges to x = 65")
+    expect(len(half) > 10, f"the half circle has {len(half)} points")
+    # The full circle around (35, 15), radius 5: no angular gap above 45 degrees.
+    full = by_line[12]
+    check_curve(full, to_data, span, lambda q: abs(math.hypot(q[0] - 35, q[1] - 15) - 5), "G2 full circle")
+    ang = sorted(math.atan2(to_data(*q)[1] - 15, to_data(*q)[0] - 35) for q in full)
+    gaps = [b - a for a, b in zip(ang, ang[1:])] + [ang[0] + 2 * math.pi - ang[-1]]
+    expect(max(gaps) < math.pi / 4, f"the full circle has a gap of {max(gaps)} rad")
+    # The half ellipse around (20, 15), a = 10 along X, b = 5: the upper half.
+    ell = by_line[14]
+    for q in ell:
+        x, y = to_data(*q)
+        expect(abs(((x - 20) / 10) ** 2 + ((y - 15) / 5) ** 2 - 1) < 0.01 and y > 15 - px, f"ellipse point {x},{y}")
+    expect(max(to_data(*q)[1] for q in ell) > 20 - 2 * px, "the ellipse reaches y = 20")
+    # The plunge (G1 Z-1) seen from above is a dot: a path of one point twice.
+    expect(len(set(by_line[11])) == 1, f"the plunge {by_line[11]}")
+    # Deterministic; the default output name is the program's.
+    first = open(svg, "rb").read()
+    rc, out = stc("plot", "--gcode", PART, "-o", svg)
+    expect(rc == 0 and open(svg, "rb").read() == first, "a second run differs")
+    copy = os.path.join(TMP, "copy.cnc")
+    shutil.copy(PART, copy)
+    rc, out = stc("plot", "--gcode", copy)
+    expect(rc == 0 and os.path.exists(os.path.join(TMP, "copy.svg")), f"default output: {rc} {out}")
+    print("ok")
+
+
+def part_trace():
+    """An 'actual' path: the big half circle with a radial error of 0.5 and a
+    rapid flag on the first and last quarter of the time."""
+    n = 400
+    rows = []
+    for i in range(n + 1):
+        a = -math.pi / 2 + math.pi * i / n
+        rows.append([seconds(i, 1), real(50 + 15.5 * math.cos(a)), real(15 + 15.5 * math.sin(a)), real(0.0),
+                     "TRUE" if i < n // 4 or i > 3 * n // 4 else "FALSE", "E_S#Run"])
+    return write_csv("actual.csv", ["X.pos", "Y.pos", "Z.pos", "G0", "MAIN.state"], rows)
+
+
+def case_gcode_trace():
+    csv = part_trace()
+    svg = os.path.join(TMP, "both.svg")
+    rc, out = stc("plot", csv, "--gcode", PART, "--xy", "X.pos,Y.pos", "--rapid", "g0", "-o", svg)
+    expect(rc == 0, f"exit {rc}: {out}")
+    root = parse(svg)
+    expect(texts(root, "legend") == ["commanded (feed)", "rapid (G0)", "actual: X.pos, Y.pos", "actual, G0 (G0)"],
+           f"legend {texts(root, 'legend')}")
+    sub = texts(root, "subtitle")[0]
+    expect(sub.startswith("401 samples") and "program: 13 moves" in sub, sub)
+    # The program is drawn first, under the trace.
+    order = [g.get("class") for g in root.iter(NS + "g") if g.get("class") in ("program", "path")]
+    expect(order == ["program", "path"], f"drawing order {order}")
+    _, _, to_data = axis_map(root)
+    trace = groups(root, "path")[0]
+    lines = list(trace.iter(NS + "polyline"))
+    expect([pl.get("class") == "rapid" for pl in lines] == [True, False, True], f"runs {[pl.attrib for pl in lines]}")
+    expect(all(pl.get("stroke-dasharray") for pl in lines if pl.get("class") == "rapid"), "rapid runs dashed")
+    # The runs join: each ends where the next starts.
+    pts = path_points(trace)
+    for a, b in zip(pts, pts[1:]):
+        expect(a[-1] == b[0], f"gap between runs: {a[-1]} {b[0]}")
+    for line in pts:
+        for q in line:
+            x, y = to_data(*q)
+            expect(abs(math.hypot(x - 50, y - 15) - 15.5) < 0.1, f"trace point {x},{y}")
+    # X/Z plane: the plunge at x = 30 from z = 5 to z = -1 is a vertical line.
+    svg2 = os.path.join(TMP, "xz.svg")
+    rc, out = stc("plot", "--gcode", PART, "--gcode-axes", "x,z", "-o", svg2)
+    expect(rc == 0, f"--gcode-axes: {rc} {out}")
+    root = parse(svg2)
+    prog, paths = program_paths(root)
+    expect(prog.get("data-axes") == "X,Z" and texts(root, "xlabel") == ["X"] and texts(root, "ylabel") == ["Z"], "X,Z plane")
+    _, _, to_data = axis_map(root)
+    plunge = [to_data(*q) for p, pts in paths if p.get("data-line") == "11" for q in pts]
+    expect(len(plunge) == 2 and all(abs(x - 30) < 0.05 for x, _ in plunge) and
+           abs(plunge[0][1] - 5) < 0.05 and abs(plunge[1][1] + 1) < 0.05, f"plunge {plunge}")
+    print("ok")
+
+
+def case_gcode_errors():
+    svg = os.path.join(TMP, "err.svg")
+    broken = os.path.join(GDIR, "broken.cnc")
+    rc, out = stc("plot", "--gcode", broken, "-o", svg)
+    expect(rc == 1 and "broken.cnc:3:14: error: the radius 1 is smaller than half the chord" in out and
+           "broken.cnc:4:8: error:" in out and "$depth$" in out and "--gcode-var" in out, f"decode errors: {rc} {out}")
+    expect(not os.path.exists(svg), "no SVG for a broken program")
+    rc, out = stc("plot", "--gcode", os.path.join(GDIR, "empty.cnc"), "-o", svg)
+    expect(rc == 0, f"empty program: {rc} {out}")
+    root = parse(svg)
+    expect(texts(root, "note") == ["no moves in " + os.path.join(GDIR, "empty.cnc")] or
+           texts(root, "note")[0].startswith("no moves in"), f"note {texts(root, 'note')}")
+    expect("0 moves" in texts(root, "subtitle")[0], texts(root, "subtitle"))
+    # $name$ values from --gcode-var.
+    vars_ = os.path.join(GDIR, "vars.cnc")
+    rc, out = stc("plot", "--gcode", vars_, "-o", svg)
+    expect(rc == 1 and "unknown variable '$len$'" in out and "--gcode-var" in out, f"no values: {rc} {out}")
+    rc, out = stc("plot", "--gcode", vars_, "-o", svg, "--gcode-var", "LEN=20", "--gcode-var", "h=10", "--gcode-var", "$Radius$=6")
+    expect(rc == 0, f"--gcode-var: {rc} {out}")
+    rc, out = stc("plot", "--gcode", vars_, "-o", svg, "--gcode-var", "len=20", "--gcode-var", "h=10", "--gcode-var", "radus=6")
+    expect(rc == 1 and "did you mean '$radus$'" in out, f"--gcode-var hint: {rc} {out}")
+    good = os.path.join(SRC, "tests/cli/gcode_project/nc/good.cnc")
+    rc, out = stc("plot", "--gcode", good, "-o", svg, "--gcode-var", "xPos=20", "--gcode-var", "GVL.xPos=20",
+                  "--gcode-var", "radius=10")
+    # G0 X0 Y0 from the start position 0 is no move: the line, the arc, the line.
+    expect(rc == 0 and len(program_paths(parse(svg))[1]) == 3, f"good.cnc: {rc} {out}")
+    for bad in ["x", "x=", "=1", "x=1e999", "x=abc"]:
+        rc, out = stc("plot", "--gcode", vars_, "-o", svg, "--gcode-var", bad)
+        expect(rc == 2 and "NAME=VALUE" in out, f"--gcode-var {bad}: {rc} {out}")
+    # Usage errors: exit 2.
+    csv = part_trace()
+    for args, msg in [([], "give a trace CSV, --gcode FILE, or both"),
+                      (["--gcode", PART, "--xy", "X.pos,Y.pos"], "--xy needs a trace CSV"),
+                      (["--gcode", PART, "--from", "1s"], "--from needs a trace CSV"),
+                      ([csv, "--gcode", PART], "needs --xy"),
+                      (["--gcode", PART, "--gcode-axes", "X,X"], "not two different axes"),
+                      (["--gcode", PART, "--gcode-axes", "XY"], "not two different axes"),
+                      ([csv, "--gcode-axes", "X,Z", "--xy", "X.pos,Y.pos"], "requires --gcode"),
+                      ([csv, "--xy", "X.pos,Y.pos", "--rapid", "G1"], "--rapid: no column 'G1'"),
+                      ([csv, "--xy", "X.pos,Y.pos", "--rapid", "MAIN.state"], "not a BOOL or numeric column"),
+                      ([csv, "--rapid", "G0"], "requires --xy"),
+                      (["--gcode", os.path.join(GDIR, "nothere.cnc")], "cannot open"),
+                      ([csv, "--gcode", PART, "--vars", "X.pos"], "excludes")]:
+        rc, out = stc("plot", *args, "-o", svg)
+        expect(rc == 2 and msg in out, f"{args}: {rc} {out}")
+    print("ok")
+
+
 {"structure": case_structure, "vars-window": case_vars_window, "downsample": case_downsample,
  "errors": case_errors, "run": case_run, "xy-circle": case_xy_circle, "xy-window": case_xy_window,
- "xy-errors": case_xy_errors, "run-xy": case_run_xy}[CASE]()
+ "xy-errors": case_xy_errors, "run-xy": case_run_xy, "gcode-path": case_gcode_path,
+ "gcode-trace": case_gcode_trace, "gcode-errors": case_gcode_errors}[CASE]()

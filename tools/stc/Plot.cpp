@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -15,9 +16,16 @@
 #include <tuple>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <sstream>
 
+#include "basic/Diagnostics.h"
+#include "basic/SourceManager.h"
+#include "stdlib-motion/cnc/Decoder.h"
+#include "stdlib-motion/cnc/Geometry.h"
 #include "vm/Time.h"
+
+#include <unistd.h>
 
 namespace stc::plot {
 namespace {
@@ -350,14 +358,15 @@ void padRange(double& lo, double& hi) {
 }
 
 // The document, its background, the title and the line under it.
-void openSvg(Svg& s, double width, double height, double left, const std::string& title, const Window& w) {
+std::string windowText(const Window& w) { return fmt::format("{} samples, {} s to {} s", w.r1 - w.r0, seconds(w.t0), seconds(w.t1)); }
+
+void openSvg(Svg& s, double width, double height, double left, const std::string& title, const std::string& subtitle) {
   s.add(R"(<?xml version="1.0" encoding="UTF-8"?>)");
   s.add(R"(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}" font-family="DejaVu Sans, Arial, Helvetica, sans-serif" font-size="11">)",
         num(width), num(height), num(width), num(height));
   s.add(R"(<rect width="100%" height="100%" fill="#ffffff"/>)");
   s.add(R"(<text class="title" x="{}" y="24" font-size="16" font-weight="bold">{}</text>)", num(left), xmlEscape(title));
-  s.add(R"(<text class="subtitle" x="{}" y="40" fill="#666666">{} samples, {} s to {} s</text>)", num(left), w.r1 - w.r0,
-        seconds(w.t0), seconds(w.t1));
+  s.add(R"(<text class="subtitle" x="{}" y="40" fill="#666666">{}</text>)", num(left), xmlEscape(subtitle));
 }
 
 // A horizontal grid line from x0 to x1 at `y`, its tick and label left of x0.
@@ -374,9 +383,14 @@ void xTick(Svg& s, double x, double y0, double y1, const char* gridColor, const 
   s.add(R"(<text class="xtick" x="{}" y="{}" text-anchor="middle">{}</text>)", num(x), num(y1 + 16), label);
 }
 
-// One legend line: a short stroke in `color` and the text (baseline at y).
-void legendEntry(Svg& s, double x, double y, const char* color, const std::string& text, double maxWidth) {
-  s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="3"/>)", num(x), num(y - 4), num(x + 16), num(y - 4), color);
+// One legend line: a short stroke in `color` (dashed: `dash` is its
+// stroke-dasharray) and the text (baseline at y).
+void legendEntry(Svg& s, double x, double y, const char* color, const std::string& text, double maxWidth, const char* dash = nullptr) {
+  if (dash)
+    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="2" stroke-dasharray="{}"/>)", num(x), num(y - 4), num(x + 18),
+          num(y - 4), color, dash);
+  else
+    s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="3"/>)", num(x), num(y - 4), num(x + 16), num(y - 4), color);
   s.add(R"(<text class="legend" x="{}" y="{}">{}</text>)", num(x + 22), num(y), xmlEscape(fitText(text, maxWidth - 22)));
 }
 
@@ -583,10 +597,181 @@ std::string pathAxisLabel(const std::vector<const Column*>& cols) {
   return label;
 }
 
+// ------------------------------------------------------------------ G-code programs (--gcode)
+
+// One motion element of a program as a polyline in the drawn plane.
+struct ProgramMove {
+  bool rapid = false;   // G0 (LinPos): dashed
+  int line = 0;         // source line of the block
+  cnc::MoveType type = cnc::MoveType::Lin;
+  std::vector<std::pair<double, double>> pts;   // data coordinates (axis H, axis V)
+};
+
+struct Program {
+  std::string file;    // as given
+  std::string axes;    // "X,Y"
+  std::vector<ProgramMove> moves;
+  size_t feeds = 0, rapids = 0;
+};
+
+// The point of `e` at u, projected onto the plane of axes h (across) and v (up).
+std::pair<double, double> project(const cnc::Element& e, double u, cnc::Axis h, cnc::Axis v) {
+  cnc::Pos p = cnc::point(e, u);
+  return {p[h], p[v]};
+}
+
+// Distance of q from the segment a-b.
+double segmentDistance(std::pair<double, double> q, std::pair<double, double> a, std::pair<double, double> b) {
+  double dx = b.first - a.first, dy = b.second - a.second, len2 = dx * dx + dy * dy;
+  double t = len2 > 0 ? std::clamp(((q.first - a.first) * dx + (q.second - a.second) * dy) / len2, 0.0, 1.0) : 0.0;
+  return std::hypot(q.first - a.first - t * dx, q.second - a.second - t * dy);
+}
+
+// Appends the points of `e` over (u0, u1] so that no chord is further than
+// `tol` from the curve (checked at the quarter points of each chord; the
+// uniform start below keeps each piece far less than a half turn, where that
+// check cannot miss a bulge).
+void refine(const cnc::Element& e, cnc::Axis h, cnc::Axis v, double u0, std::pair<double, double> p0, double u1,
+            std::pair<double, double> p1, double tol, int depth, std::vector<std::pair<double, double>>& out) {
+  if (depth < 14) {
+    for (double f : {0.5, 0.25, 0.75}) {
+      if (segmentDistance(project(e, u0 + f * (u1 - u0), h, v), p0, p1) > tol) {
+        double um = (u0 + u1) / 2;
+        auto pm = project(e, um, h, v);
+        refine(e, h, v, u0, p0, um, pm, tol, depth + 1, out);
+        refine(e, h, v, um, pm, u1, p1, tol, depth + 1, out);
+        return;
+      }
+    }
+  }
+  out.push_back(p1);
+}
+
+// The polyline of one element: lines (G0, G1; every axis is linear in u, so
+// their projection is a line) by their end points, curves sampled to `tol`.
+// tol <= 0: a coarse uniform sampling (for the extent).
+std::vector<std::pair<double, double>> sampleElement(const cnc::Element& e, cnc::Axis h, cnc::Axis v, double tol) {
+  std::vector<std::pair<double, double>> pts{project(e, 0, h, v)};
+  if (e.type == cnc::MoveType::Lin || e.type == cnc::MoveType::LinPos) {
+    pts.push_back(project(e, 1, h, v));
+    return pts;
+  }
+  // At most 1/16 turn per starting piece (arcs and ellipses can turn many times).
+  double turn = e.type == cnc::MoveType::Clw || e.type == cnc::MoveType::Cclw         ? std::fabs(e.arc.sweep)
+                : e.type == cnc::MoveType::EllClw || e.type == cnc::MoveType::EllCclw ? std::fabs(e.ellipse.sweepPhi)
+                                                                                       : 0.0;
+  int n = std::clamp(static_cast<int>(std::ceil(turn / (std::numbers::pi / 8))), 16, 16 * 100);
+  auto prev = pts.back();
+  for (int i = 1; i <= n; ++i) {
+    double u0 = static_cast<double>(i - 1) / n, u1 = static_cast<double>(i) / n;
+    auto p1 = project(e, u1, h, v);
+    if (tol > 0) refine(e, h, v, u0, prev, u1, p1, tol, 0, pts);
+    else pts.push_back(p1);
+    prev = p1;
+  }
+  return pts;
+}
+
+cnc::Axis axisOf(char letter) {
+  for (int a = 0; a < cnc::kAxisCount; ++a)
+    if (cnc::axisLetter(static_cast<cnc::Axis>(a)) == letter) return static_cast<cnc::Axis>(a);
+  return cnc::AxX;
+}
+
+// The motion elements as polylines in the plane of options.gcodeH/V, curves
+// within 0.05 % of the program's extent (the plot spans at least 110 % of it,
+// so the chord error stays below 0.1 % of the plot).
+void sampleProgram(const std::vector<cnc::Element>& elements, const PlotOptions& options, Program& prog) {
+  cnc::Axis h = axisOf(options.gcodeH), v = axisOf(options.gcodeV);
+  prog.axes = fmt::format("{},{}", options.gcodeH, options.gcodeV);
+  double inf = std::numeric_limits<double>::infinity();
+  double xlo = inf, xhi = -inf, ylo = inf, yhi = -inf;
+  std::vector<const cnc::Element*> moves;
+  for (const cnc::Element& e : elements) {
+    if (!cnc::isMotion(e.type)) continue;   // G92 jumps, M, G4, G75: no path
+    moves.push_back(&e);
+    for (auto [x, y] : sampleElement(e, h, v, 0)) {
+      xlo = std::min(xlo, x), xhi = std::max(xhi, x);
+      ylo = std::min(ylo, y), yhi = std::max(yhi, y);
+    }
+  }
+  double extent = moves.empty() ? 0 : std::max(xhi - xlo, yhi - ylo);
+  // A program that stays on one point: any small tolerance will do.
+  double tol = extent > 0 ? extent * 5e-4 : 1e-9;
+  for (const cnc::Element* e : moves) {
+    ProgramMove m;
+    m.rapid = e->type == cnc::MoveType::LinPos;
+    m.line = e->line;
+    m.type = e->type;
+    m.pts = sampleElement(*e, h, v, tol);
+    ++(m.rapid ? prog.rapids : prog.feeds);
+    prog.moves.push_back(std::move(m));
+  }
+}
+
+// $name$ values from --gcode-var (names case-insensitive, as ST names).
+class OptionVariables : public cnc::VariableAccess {
+public:
+  explicit OptionVariables(const std::vector<std::pair<std::string, double>>& vars) : vars_(vars) {}
+  bool read(std::string_view name, double& value) override {
+    for (const auto& [n, v] : vars_)
+      if (lower(n) == lower(std::string(name))) {
+        value = v;
+        return true;
+      }
+    return false;
+  }
+  bool write(std::string_view, double) override { return false; }   // G36 O$x$: the plot has nowhere to keep it
+  std::string suggest(std::string_view name) override {
+    std::vector<std::string> names;
+    for (const auto& nv : vars_) names.push_back(nv.first);
+    return config::closest(std::string(name), names);
+  }
+
+private:
+  const std::vector<std::pair<std::string, double>>& vars_;
+};
+
+// Decodes options.gcode into `prog`.  0 ok; 1 decode errors (rendered into
+// `diagnostics`); 2 the file cannot be read (`error`).
+int decodeProgram(const PlotOptions& options, Program& prog, std::string& error, std::string& diagnostics) {
+  std::string why;
+  if (!config::checkRegularFile(options.gcode, why)) {   // a FIFO would block
+    error = fmt::format("--gcode: cannot open '{}': {}", options.gcode, why);
+    return 2;
+  }
+  SourceManager sm;
+  uint32_t file = sm.loadFile(options.gcode, why);
+  if (!file) {
+    error = fmt::format("--gcode: {}", why);
+    return 2;
+  }
+  DiagnosticsEngine diags(sm);
+  diags.opts.errorLimit = 0;
+  OptionVariables vars(options.gcodeVars);
+  std::vector<cnc::Element> elements = cnc::decodeAll(sm, file, diags, cnc::DecoderOptions{}, &vars);
+  const bool color = isatty(STDERR_FILENO);
+  bool variables = false;
+  for (const Diagnostic& d : diags.diagnostics()) {
+    diagnostics += renderText(sm, d, color);
+    variables = variables || d.code == "gcode-variable";
+  }
+  if (diags.hasErrors()) {
+    if (variables) diagnostics += "note: stc plot reads $name$ values from --gcode-var NAME=VALUE\n";
+    error = fmt::format("--gcode: '{}' has errors; nothing drawn", options.gcode);
+    return 1;
+  }
+  prog.file = options.gcode;
+  sampleProgram(elements, options, prog);
+  return 0;
+}
+
 // --xy: each pair's Y over its X in one square panel, the same scale on both
 // axes.  A path is one polyline per run of finite samples, thinned to points at
-// least half a pixel apart; its first and last samples in the window are marked.
-std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options) {
+// least half a pixel apart; its first and last samples in the window are marked
+// (--rapid: runs where the flag is set are dashed).  `prog` (--gcode): the
+// commanded path under them; without pairs the program alone.
+std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options, const Program* prog) {
   struct Path {
     Column x, y;
     const char* color;
@@ -598,12 +783,21 @@ std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options) {
     paths.push_back({classify(trace.names[xi], trace.columns[xi]), classify(trace.names[yi], trace.columns[yi]),
                      kLineColors[paths.size() % 10]});
   }
+  // --rapid: the flag column (Bool or Number; NaN counts as not rapid).
+  std::optional<Column> rapidCol;
+  if (!options.rapid.empty()) {
+    size_t ri = findColumn(trace, options.rapid);
+    if (ri != std::string::npos) rapidCol = classify(trace.names[ri], trace.columns[ri]);
+    if (rapidCol && rapidCol->kind == Kind::State) rapidCol.reset();
+  }
+  auto rapidAt = [&](size_t r) { return rapidCol && std::isfinite(rapidCol->num[r]) && rapidCol->num[r] != 0; };
   Window w = timeWindow(trace, options);
   auto finiteAt = [](const Path& p, size_t r) {
     return p.x.kind == Kind::Number && p.y.kind == Kind::Number && std::isfinite(p.x.num[r]) && std::isfinite(p.y.num[r]);
   };
 
-  // The data's box, padded, then both ranges widened to the larger span.
+  // The data's box (the trace's window and the whole program), padded, then
+  // both ranges widened to the larger span.
   double inf = std::numeric_limits<double>::infinity();
   double xlo = inf, xhi = -inf, ylo = inf, yhi = -inf;
   for (const Path& p : paths)
@@ -611,6 +805,12 @@ std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options) {
       if (finiteAt(p, r)) {
         xlo = std::min(xlo, p.x.num[r]), xhi = std::max(xhi, p.x.num[r]);
         ylo = std::min(ylo, p.y.num[r]), yhi = std::max(yhi, p.y.num[r]);
+      }
+  if (prog)
+    for (const ProgramMove& m : prog->moves)
+      for (auto [x, y] : m.pts) {
+        xlo = std::min(xlo, x), xhi = std::max(xhi, x);
+        ylo = std::min(ylo, y), yhi = std::max(yhi, y);
       }
   padRange(xlo, xhi);
   padRange(ylo, yhi);
@@ -625,15 +825,24 @@ std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options) {
   const double left = 84, top = 56, side = 560;
   double maxName = 0;
   std::vector<std::string> legends;
-  for (const Path& p : paths) legends.push_back(p.x.name + ", " + p.y.name);
+  // Beside a program the trace's paths are what the machine did.
+  for (const Path& p : paths) legends.push_back((prog ? "actual: " : "") + p.x.name + ", " + p.y.name);
   for (const std::string& l : legends) maxName = std::max(maxName, textWidth(l));
+  if (prog) maxName = std::max(maxName, textWidth("commanded (feed)"));
   double legend = std::clamp(maxName + 44, 150.0, 300.0);
   double width = left + side + 12 + legend + 8, height = top + side + 48;
   auto px = [&](double v) { return left + (v - xlo) / span * side; };
   auto py = [&](double v) { return top + side - (v - ylo) / span * side; };
 
+  std::string subtitle;
+  if (!paths.empty() || !prog) subtitle = windowText(w);
+  if (prog) {
+    std::string_view a = prog->axes;
+    subtitle += fmt::format("{}program: {} moves ({} feed, {} rapid), {}/{} plane", subtitle.empty() ? "" : "; ",
+                            prog->feeds + prog->rapids, prog->feeds, prog->rapids, a.substr(0, 1), a.substr(2, 1));
+  }
   Svg s;
-  openSvg(s, width, height, left, options.title, w);
+  openSvg(s, width, height, left, options.title, subtitle);
   s.add(R"(<g class="panel" data-kind="path">)");
   s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#ffffff" stroke="#999999"/>)", num(left), num(top), num(side), num(side));
   // One step on both axes keeps the grid square.
@@ -642,27 +851,62 @@ std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options) {
   for (double v : ticks(ylo, yhi, step)) yTick(s, left, left + side, py(v), tickLabel(v, step));
   std::vector<const Column*> xs, ys;
   for (const Path& p : paths) xs.push_back(&p.x), ys.push_back(&p.y);
+  std::string xlabel = pathAxisLabel(xs), ylabel = pathAxisLabel(ys);
+  if (paths.empty() && prog) xlabel = prog->axes.substr(0, 1), ylabel = prog->axes.substr(2, 1);
   s.add(R"(<text class="xlabel" x="{}" y="{}" text-anchor="middle">{}</text>)", num(left + side / 2), num(top + side + 34),
-        xmlEscape(fitText(pathAxisLabel(xs), side)));
+        xmlEscape(fitText(xlabel, side)));
   s.add(R"s(<text class="ylabel" x="{0}" y="{1}" text-anchor="middle" transform="rotate(-90 {0} {1})">{2}</text>)s", num(16),
-        num(top + side / 2), xmlEscape(fitText(pathAxisLabel(ys), side)));
+        num(top + side / 2), xmlEscape(fitText(ylabel, side)));
   s.add(R"(<clipPath id="clipxy"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath>)", num(left - 1), num(top - 1), num(side + 2),
         num(side + 2));
 
   double ly = top + 12, lx = left + side + 12;
+  // The commanded path first, so the actual one is drawn over it: one <path>
+  // per element (class feed|rapid, the block's line), points 0.1 px apart or more.
+  const char* kFeedColor = "#555555";
+  const char* kRapidColor = "#ff7f0e";
+  const char* kDash = "6 4";
+  if (prog) {
+    s.add(R"s(<g class="program" data-file="{}" data-axes="{}" clip-path="url(#clipxy)">)s", xmlEscape(prog->file), prog->axes);
+    for (const ProgramMove& m : prog->moves) {
+      std::string d, last;
+      for (auto [x, y] : m.pts) {
+        std::string pt = num(px(x)) + ',' + num(py(y));
+        if (pt == last) continue;
+        d += (d.empty() ? "M" : " L") + pt;
+        last = std::move(pt);
+      }
+      if (d.find('L') == std::string::npos) d += " L" + last;   // a move shorter than the resolution: a dot
+      if (m.rapid)
+        s.add(R"(<path class="rapid" data-line="{}" fill="none" stroke="{}" stroke-width="1.2" stroke-dasharray="{}" d="{}"/>)", m.line,
+              kRapidColor, kDash, d);
+      else
+        s.add(R"(<path class="feed" data-line="{}" data-move="{}" fill="none" stroke="{}" stroke-width="1.2" stroke-linecap="round" stroke-linejoin="round" d="{}"/>)",
+              m.line, cnc::toString(m.type), kFeedColor, d);
+    }
+    if (prog->moves.empty())
+      s.add(R"(<text class="note" x="{}" y="{}" text-anchor="middle" fill="#666666">no moves in {}</text>)", num(left + side / 2),
+            num(top + side / 2), xmlEscape(fitText(prog->file, side - 80)));
+    s.add("</g>");
+    legendEntry(s, lx, ly, kFeedColor, "commanded (feed)", legend - 12);
+    ly += 16;
+    legendEntry(s, lx, ly, kRapidColor, "rapid (G0)", legend - 12, kDash);
+    ly += 16;
+  }
   for (size_t i = 0; i < paths.size(); ++i) {
     const Path& p = paths[i];
-    std::vector<std::string> lines;
+    std::vector<std::pair<std::string, bool>> lines;   // points, drawn dashed (--rapid)
     std::string pts;
     double lastX = 0, lastY = 0;
     std::string pending;   // the latest point skipped by thinning: a run ends on it
+    bool rapid = false;    // the run being collected is a G0 part
     std::optional<std::pair<double, double>> first, last;
     auto endLine = [&]() {
       if (!pending.empty()) pts += pending + ' ';
       pending.clear();
       if (!pts.empty()) {
         pts.pop_back();
-        lines.push_back(std::move(pts));
+        lines.emplace_back(std::move(pts), rapid);
       }
       pts.clear();
     };
@@ -675,6 +919,18 @@ std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options) {
       if (!first) first = {x, y};
       last = {x, y};
       std::string pt = num(x) + ',' + num(y);
+      if (rapidAt(r) != rapid) {
+        // The run ends here and the next one starts here: no gap between them.
+        if (!pts.empty()) {
+          pending.clear();
+          pts += pt + ' ';
+        }
+        endLine();
+        rapid = !rapid;
+        pts += pt + ' ';
+        lastX = x, lastY = y;
+        continue;
+      }
       if (!pts.empty() && std::fabs(x - lastX) < 0.5 && std::fabs(y - lastY) < 0.5) {
         pending = std::move(pt);
         continue;
@@ -685,8 +941,13 @@ std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options) {
     }
     endLine();
     s.add(R"s(<g class="path" data-x="{}" data-y="{}" clip-path="url(#clipxy)">)s", xmlEscape(p.x.name), xmlEscape(p.y.name));
-    for (const std::string& l : lines)
-      s.add(R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round" points="{}"/>)", p.color, l);
+    for (const auto& [l, dashed] : lines) {
+      if (dashed)
+        s.add(R"(<polyline class="rapid" fill="none" stroke="{}" stroke-width="1.5" stroke-dasharray="{}" stroke-linejoin="round" points="{}"/>)",
+              p.color, kDash, l);
+      else
+        s.add(R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round" points="{}"/>)", p.color, l);
+    }
     if (first) {
       s.add(R"(<circle class="start" cx="{}" cy="{}" r="4" fill="#ffffff" stroke="{}" stroke-width="2"/>)", num(first->first),
             num(first->second), p.color);
@@ -696,13 +957,19 @@ std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options) {
     legendEntry(s, lx, ly, p.color, legends[i], legend - 12);
     ly += 16;
   }
-  // What the markers mean.
-  ly += 4;
-  s.add(R"(<circle cx="{}" cy="{}" r="4" fill="#ffffff" stroke="#555555" stroke-width="2"/>)", num(lx + 8), num(ly - 4));
-  s.add(R"(<text class="legend-marker" x="{}" y="{}">start</text>)", num(lx + 22), num(ly));
-  ly += 16;
-  s.add(R"(<rect x="{}" y="{}" width="7" height="7" fill="#555555"/>)", num(lx + 4.5), num(ly - 7.5));
-  s.add(R"(<text class="legend-marker" x="{}" y="{}">end</text>)", num(lx + 22), num(ly));
+  if (rapidCol && !paths.empty()) {
+    legendEntry(s, lx, ly, "#555555", "actual, G0 (" + rapidCol->name + ")", legend - 12, kDash);
+    ly += 16;
+  }
+  if (!paths.empty()) {
+    // What the markers mean.
+    ly += 4;
+    s.add(R"(<circle cx="{}" cy="{}" r="4" fill="#ffffff" stroke="#555555" stroke-width="2"/>)", num(lx + 8), num(ly - 4));
+    s.add(R"(<text class="legend-marker" x="{}" y="{}">start</text>)", num(lx + 22), num(ly));
+    ly += 16;
+    s.add(R"(<rect x="{}" y="{}" width="7" height="7" fill="#555555"/>)", num(lx + 4.5), num(ly - 7.5));
+    s.add(R"(<text class="legend-marker" x="{}" y="{}">end</text>)", num(lx + 22), num(ly));
+  }
   s.add("</g>");
   s.add("</svg>");
   return std::move(s.out);
@@ -758,7 +1025,7 @@ bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, 
 }
 
 std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
-  if (!options.xy.empty()) return renderPathSvg(trace, options);
+  if (!options.xy.empty()) return renderPathSvg(trace, options, nullptr);
   // The columns, in --vars order.
   std::vector<Column> cols;
   std::vector<size_t> pick;
@@ -824,7 +1091,7 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
   double height = bottom + 48;
 
   Svg s;
-  openSvg(s, L.width, height, L.left, options.title, w);
+  openSvg(s, L.width, height, L.left, options.title, windowText(w));
   if (cols.empty()) s.add(R"(<text x="{}" y="{}">no variables</text>)", num(L.left), num(top0 + 20));
 
   // The shared time axis: grid through every panel and lane, labels at the bottom.
@@ -864,9 +1131,18 @@ bool parseSeconds(const std::string& text, double& out) {
 }
 
 int plotTraceFile(const std::string& csvPath, const std::string& svgPath, const PlotOptions& options, std::string& error) {
+  std::string diagnostics;
+  int rc = plotFiles(csvPath, svgPath, options, error, diagnostics);
+  if (!diagnostics.empty()) error = diagnostics + error;
+  return rc;
+}
+
+int plotFiles(const std::string& csvPath, const std::string& svgPath, const PlotOptions& options, std::string& error,
+              std::string& diagnostics) {
   TraceTable t;
   bool missing = false;
-  if (!readTraceCsv(csvPath, t, error, missing)) return missing ? 2 : 1;
+  const bool haveTrace = !csvPath.empty();
+  if (haveTrace && !readTraceCsv(csvPath, t, error, missing)) return missing ? 2 : 1;
   // A name that is not a column: the closest column and the list of them.
   auto unknown = [&](const char* option, const std::string& v) {
     std::string names;
@@ -887,20 +1163,34 @@ int plotTraceFile(const std::string& csvPath, const std::string& svgPath, const 
         return 2;
       }
     }
+  if (!options.rapid.empty()) {
+    size_t i = findColumn(t, options.rapid);
+    if (i == std::string::npos) return unknown("--rapid", options.rapid);
+    if (classify(t.names[i], t.columns[i]).kind == Kind::State) {
+      error = fmt::format("--rapid: '{}' in '{}' is not a BOOL or numeric column", t.names[i], csvPath);
+      return 2;
+    }
+  }
   if (options.from && options.to && *options.from >= *options.to) {
     error = "--from must be before --to";
     return 2;
   }
-  if (t.time.empty()) {
+  Program prog;
+  if (!options.gcode.empty()) {
+    int rc = decodeProgram(options, prog, error, diagnostics);
+    if (rc) return rc;
+  }
+  if (haveTrace && t.time.empty()) {
     error = fmt::format("'{}' has no samples", csvPath);
     return 1;
   }
   PlotOptions o = options;
   if (o.title.empty()) {
-    size_t slash = csvPath.find_last_of('/');
-    o.title = slash == std::string::npos ? csvPath : csvPath.substr(slash + 1);
+    const std::string& named = haveTrace ? csvPath : options.gcode;
+    size_t slash = named.find_last_of('/');
+    o.title = slash == std::string::npos ? named : named.substr(slash + 1);
   }
-  std::string svg = renderSvg(t, o);
+  std::string svg = options.gcode.empty() ? renderSvg(t, o) : renderPathSvg(t, o, &prog);
   std::FILE* f = std::fopen(svgPath.c_str(), "wb");
   if (!f) {
     error = fmt::format("cannot open '{}': {}", svgPath, std::strerror(errno));
@@ -916,17 +1206,40 @@ int plotTraceFile(const std::string& csvPath, const std::string& svgPath, const 
 }
 
 void PlotCommand::add(CLI::App& app) {
-  cmd = app.add_subcommand("plot", "Draw a trace CSV (stc run --trace-out x.csv) as an SVG");
-  cmd->add_option("trace", trace, "Trace CSV file")->required();
-  cmd->add_option("-o,--output", output, "SVG file (default: the trace's name with .svg)");
+  cmd = app.add_subcommand("plot", "Draw a trace CSV (stc run --trace-out x.csv) or a G-code program's tool path as an SVG");
+  cmd->add_option("trace", trace, "Trace CSV file (optional with --gcode)");
+  cmd->add_option("-o,--output", output, "SVG file (default: the trace's name, else the program's, with .svg)");
   CLI::Option* varsOpt = cmd->add_option("--vars", vars, "Columns to draw: A,B,... (default: all)")->delimiter(',')->allow_extra_args(false);
-  cmd->add_option("--xy", xy, "Draw the path of Y over X (one square panel, equal scale); repeat for more paths")
-      ->type_name("X,Y")
-      ->allow_extra_args(false)
-      ->excludes(varsOpt);
+  CLI::Option* xyOpt = cmd->add_option("--xy", xy, "Draw the path of Y over X (one square panel, equal scale); repeat for more paths")
+                           ->type_name("X,Y")
+                           ->allow_extra_args(false)
+                           ->excludes(varsOpt);
   cmd->add_option("--title", title, "Title (default: the trace file's name)");
   cmd->add_option("--from", from, "Start of the time window (1.5s, 250ms, or seconds)");
   cmd->add_option("--to", to, "End of the time window");
+  CLI::Option* gcodeOpt =
+      cmd->add_option("--gcode", gcode,
+                      "G-code program: draw its commanded tool path (feed solid, G0 dashed) under the --xy paths, or alone without a trace")
+          ->type_name("FILE")
+          ->excludes(varsOpt);
+  cmd->add_option("--gcode-axes", gcodeAxes, "The program's axes drawn across and up (default X,Y; e.g. X,Z)")
+      ->type_name("H,V")
+      ->needs(gcodeOpt);
+  cmd->add_option("--gcode-var", gcodeVars, "Value of $NAME$ in the program; repeat for more")
+      ->type_name("NAME=VALUE")
+      ->allow_extra_args(false)
+      ->needs(gcodeOpt);
+  cmd->add_option("--rapid", rapid, "Trace column that is TRUE while a G0 move runs: those parts of the --xy paths are dashed")
+      ->type_name("COL")
+      ->needs(xyOpt);
+  cmd->footer(
+      "Examples:\n"
+      "  stc plot trace.csv --vars Axis1.fSetPosition,Axis1.fSetVelocity\n"
+      "  stc plot trace.csv --xy X.fActPosition,Y.fActPosition\n"
+      "  stc plot --gcode part.cnc                   the program's X/Y tool path alone (part.svg)\n"
+      "  stc plot --gcode part.cnc --gcode-axes X,Z  the X/Z plane\n"
+      "  stc plot trace.csv --xy X.fActPosition,Y.fActPosition --gcode part.cnc --rapid MAIN.bRapid\n"
+      "G-code: feed moves solid, G0 dashed; decode errors are printed as by stc check (exit 1). See docs/cnc.md.");
 }
 
 bool parseXyPairs(const std::vector<std::string>& pairs, PlotOptions& options, std::string& error) {
@@ -943,32 +1256,58 @@ bool parseXyPairs(const std::vector<std::string>& pairs, PlotOptions& options, s
 }
 
 int PlotCommand::run() const {
+  auto usage = [](const std::string& msg) {
+    std::fprintf(stderr, "stc: error: %s\n", msg.c_str());
+    return 2;
+  };
+  if (trace.empty() && gcode.empty()) return usage("plot: give a trace CSV, --gcode FILE, or both (stc plot --help)");
+  if (trace.empty())
+    for (auto [opt, given] : {std::pair{"--xy", !xy.empty()}, std::pair{"--vars", !vars.empty()}, std::pair{"--from", !from.empty()},
+                              std::pair{"--to", !to.empty()}, std::pair{"--rapid", !rapid.empty()}})
+      if (given) return usage(fmt::format("{} needs a trace CSV (with --gcode alone only the program is drawn)", opt));
+  if (!trace.empty() && !gcode.empty() && xy.empty())
+    return usage("--gcode with a trace needs --xy X,Y: the trace's columns drawn over the program's path");
   PlotOptions o;
   o.vars = vars;
   o.title = title;
+  o.gcode = gcode;
+  o.rapid = rapid;
   std::string xyError;
-  if (!parseXyPairs(xy, o, xyError)) {
-    std::fprintf(stderr, "stc: error: %s\n", xyError.c_str());
-    return 2;
+  if (!parseXyPairs(xy, o, xyError)) return usage(xyError);
+  if (!gcodeAxes.empty()) {
+    // Two different axis letters of the program: X Y Z A B C P Q U V W.
+    const std::string letters = "XYZABCPQUVW";
+    std::string a = gcodeAxes;
+    for (char& c : a) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    if (a.size() != 3 || a[1] != ',' || letters.find(a[0]) == std::string::npos || letters.find(a[2]) == std::string::npos || a[0] == a[2])
+      return usage(fmt::format("--gcode-axes: '{}' is not two different axes H,V of X Y Z A B C P Q U V W (e.g. X,Z)", gcodeAxes));
+    o.gcodeH = a[0], o.gcodeV = a[2];
+  }
+  for (const std::string& nv : gcodeVars) {
+    size_t eq = nv.find('=');
+    double v = 0;
+    std::string name = eq == std::string::npos ? "" : nv.substr(0, eq);
+    if (!name.empty() && name.front() == '$' && name.back() == '$' && name.size() > 2) name = name.substr(1, name.size() - 2);
+    if (name.empty() || name.find('$') != std::string::npos || !parseDouble(nv.substr(eq + 1), v) || !std::isfinite(v))
+      return usage(fmt::format("--gcode-var: '{}' is not NAME=VALUE with a finite number", nv));
+    o.gcodeVars.emplace_back(name, v);
   }
   for (auto [opt, text, dst] : {std::tuple{"--from", &from, &o.from}, std::tuple{"--to", &to, &o.to}}) {
     if (text->empty()) continue;
     double v;
-    if (!parseSeconds(*text, v)) {
-      std::fprintf(stderr, "stc: error: %s: '%s' is not a time (e.g. 1.5s, 250ms, 2)\n", opt, text->c_str());
-      return 2;
-    }
+    if (!parseSeconds(*text, v)) return usage(fmt::format("{}: '{}' is not a time (e.g. 1.5s, 250ms, 2)", opt, *text));
     *dst = v;
   }
   std::string out = output;
   if (out.empty()) {
-    out = trace;
+    out = trace.empty() ? gcode : trace;
     size_t dot = out.find_last_of('.'), slash = out.find_last_of('/');
     if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) out.erase(dot);
     out += ".svg";
   }
-  std::string err;
-  int rc = plotTraceFile(trace, out, o, err);
+  std::string err, diagnostics;
+  int rc = plotFiles(trace, out, o, err, diagnostics);
+  std::fputs(diagnostics.c_str(), stderr);
   if (rc) std::fprintf(stderr, "stc: error: %s\n", err.c_str());
   return rc;
 }

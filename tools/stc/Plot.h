@@ -2,7 +2,9 @@
 // as a self-contained SVG.  Numbers become line plots grouped into panels by
 // kind (positions, velocities, ...), BOOLs digital lanes, enums and strings
 // labelled state bands, all on one time axis.  With --xy: the paths of
-// pairs of variables (Y over X) in one square panel.  Long traces are reduced to
+// pairs of variables (Y over X) in one square panel; with --gcode the
+// commanded tool path of a G-code program under them (or alone, without a
+// trace: docs/cnc.md, "Seeing a program").  Long traces are reduced to
 // min/max per pixel column, so steps and extremes survive and the file stays
 // small.  See docs/projects.md ("Traces and plots").
 #pragma once
@@ -25,6 +27,14 @@ struct PlotOptions {
   // --xy X,Y: instead of the time plot, one square panel (equal scale) with
   // the path of each pair, Y over X.
   std::vector<std::pair<std::string, std::string>> xy;
+  // --gcode FILE: a G-code program whose commanded path (feed moves solid,
+  // G0 dashed) is drawn under the --xy paths, or alone when there is no trace.
+  std::string gcode;
+  char gcodeH = 'X', gcodeV = 'Y';   // --gcode-axes H,V: the program's axes drawn across / up
+  std::vector<std::pair<std::string, double>> gcodeVars;   // --gcode-var NAME=VALUE: $NAME$ in the program
+  // --rapid COL: a trace column that is TRUE (non-zero) while a G0 move runs;
+  // those parts of the --xy paths are dashed.
+  std::string rapid;
 };
 
 // A trace as read from CSV: the time column in seconds, the other columns as text.
@@ -48,6 +58,14 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options);
 int plotTraceFile(const std::string& csvPath, const std::string& svgPath, const PlotOptions& options,
                   std::string& error);
 
+// plotTraceFile with options.gcode: `csvPath` may be empty (the program
+// alone).  A program that does not decode is exit 1 with its diagnostics
+// (file:line:col, as `stc check` prints them) in `diagnostics`; a missing
+// program file, an unknown --rapid column is exit 2.  `diagnostics` may also
+// hold warnings when the result is 0.
+int plotFiles(const std::string& csvPath, const std::string& svgPath, const PlotOptions& options, std::string& error,
+              std::string& diagnostics);
+
 // Seconds from the command line: a duration (1.5s, 250ms, T#2s) or a plain number of seconds.
 bool parseSeconds(const std::string& text, double& out);
 
@@ -62,6 +80,8 @@ struct PlotCommand {
   std::vector<std::string> xy;   // "X,Y" per --xy
   std::string title;
   std::string from, to;
+  std::string gcode, gcodeAxes, rapid;
+  std::vector<std::string> gcodeVars;   // "NAME=VALUE" per --gcode-var
   CLI::App* cmd = nullptr;
   void add(CLI::App& app);
   int run() const;

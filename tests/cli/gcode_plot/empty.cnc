@@ -1,0 +1,2 @@
+(no moves at all)
+N10 G90
