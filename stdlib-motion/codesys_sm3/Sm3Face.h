@@ -171,6 +171,7 @@ void registerSm3DiagNatives(MotionLibrary& lib);
 void registerSm3FileNatives(MotionLibrary& lib);    // Sm3File.cpp (CAA File: FILE.*)
 void registerSm3NcNatives(MotionLibrary& lib);      // Sm3NcDecoder.cpp (SMC_ReadNCFile, SMC_NCDecoder)
 void registerSm3InterpolatorNatives(MotionLibrary& lib);   // Sm3Interpolator.cpp (SMC_Interpolator, SMC_GetMParameters)
+void registerSm3ControlAxisNatives(MotionLibrary& lib);   // Sm3ControlAxisByPos.cpp (SMC_ControlAxisByPos)
 
 // Like axisFb, for bodies that take the FB's kernel slot: call(kernel, slot, axis, ctx).
 template <class T, class F>

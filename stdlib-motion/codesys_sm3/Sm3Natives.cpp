@@ -232,6 +232,7 @@ void registerSm3Natives(MotionLibrary& lib) {
   registerSm3FileNatives(lib);
   registerSm3NcNatives(lib);
   registerSm3InterpolatorNatives(lib);
+  registerSm3ControlAxisNatives(lib);
   registerSm3ProfilesNatives(lib);
   registerSm3HomingNatives(lib);
   registerSm3SyncNatives(lib);

@@ -1,0 +1,104 @@
+// SMC_ControlAxisByPos (sm3_cnc_interpolator.st; docs/cnc.md, "SMC_ControlAxisByPos"):
+// the interpolator's set position streamed into an axis as a position follow command,
+// with the gap logic: a set position the axis cannot follow stops the interpolator
+// (bStopIpo) while the axis catches up on a time-optimal one-axis plan.
+#include <cmath>
+
+#include "stdlib-motion/codesys_sm3/Sm3Face.h"
+#include "stdlib-motion/core/Profiles.h"
+#include "stdlib-motion/core/Trajectory.h"
+
+using namespace stc::motion;
+using namespace stc::motion::sm3face;
+
+namespace {
+
+constexpr int16_t kGapParametersInvalid = 510;   // SMC_CAPV_GAP_VELACCDEC_INVALID (gap dynamics not usable)
+
+bool usable(double x, double max) { return std::isfinite(x) && x > 0 && x <= max; }
+
+void SMC_ControlAxisByPos(sm3::SMC_ControlAxisByPos* self) {
+  axisFbSlot(self, FbKind::Follow, [&](Kernel& k, FbSlot& fb, Axis& ax, const CallCtx& c) {
+    const double dt = (c.intervalNs > 0 ? c.intervalNs : 1000000) * 1e-9;
+    const Limits gap{self->fGapVelocity, self->fGapAcceleration, self->fGapDeceleration,
+                     std::isfinite(self->fGapJerk) && self->fGapJerk >= 1e15 ? 0.0 : self->fGapJerk};
+    const bool gapOk = usable(gap.vel, 1e9) && usable(gap.acc, 1e16) && usable(gap.dec, 1e16) &&
+                       std::isfinite(self->fGapJerk) && self->fGapJerk > 0;
+    const bool want = self->bEnable && std::isfinite(self->fSetPosition);
+    if (self->bEnable && !std::isfinite(self->fSetPosition)) {
+      // a non-finite set position is never written: brake as if disabled, and say why
+      self->bError = true;
+      self->iErrorID = kGapParametersInvalid;
+    }
+    if (want && !self->__following) {
+      if (self->bAvoidGaps && !gapOk) {
+        self->bError = true;
+        self->iErrorID = kGapParametersInvalid;
+        return;
+      }
+      const Kinematic s = ax.set();
+      self->__p = s.p;
+      self->__v = s.v;
+      self->__a = s.a;
+      self->__following = true;
+      self->__catching = self->__braking = false;
+      self->bError = false;
+      self->iErrorID = 0;
+    }
+    if (!self->__following) {
+      self->bStopIpo = false;
+      FollowInputs none;
+      callFollow(k, fb, ax, false, false, none, c);
+      return;
+    }
+    Kinematic next{self->__p, self->__v, self->__a};
+    if (!want) {
+      // bEnable fell: brake with the gap deceleration, then end the command
+      self->__braking = true;
+      self->__catching = false;
+      self->bStopIpo = false;
+      Profile pr;
+      const Limits lim{std::max(std::fabs(next.v), 1e-9), gapOk ? gap.dec : 1e15, gapOk ? gap.dec : 1e15, gap.jerk};
+      if (next.v != 0 && planVelocity(next, 0, lim, pr) == PlanStatus::Ok && pr.duration() > dt) next = pr.at(dt);
+      else next = {next.p + 0.5 * next.v * std::min(dt, 1e-3), 0, 0};
+    } else {
+      const double target = self->fSetPosition;
+      const double vmax = ax.config().maxVelocity;
+      const double jump = target - next.p;
+      if (!self->__catching && self->bAvoidGaps) {
+        // a gap: faster than the axis may move (without a limit: a jump while it stood still)
+        const bool tooFast = vmax > 0 ? std::fabs(jump) > vmax * dt * (1 + 1e-9)
+                                      : (next.v == 0 && std::fabs(jump) > gap.vel * dt * (1 + 1e-9));
+        if (tooFast) self->__catching = true;
+      }
+      if (self->__catching) {
+        Profile pr;
+        if (planPosition({0, next.v, next.a}, jump, 0, gap, pr) == PlanStatus::Ok && pr.duration() > dt) {
+          const Kinematic q = pr.at(dt);
+          next = {next.p + q.p, q.v, q.a};
+        } else {
+          next = {target, 0, 0};   // arrived: follow the interpolator again
+          self->__catching = false;
+        }
+      } else {
+        next = {target, (target - next.p) / dt, ((target - next.p) / dt - next.v) / dt};
+      }
+      self->bStopIpo = self->__catching;
+    }
+    self->__p = next.p;
+    self->__v = next.v;
+    self->__a = next.a;
+    FollowInputs in;
+    in.mask = kFollowPosition;
+    in.position = next.p;
+    const bool run = !(self->__braking && next.v == 0);
+    callFollow(k, fb, ax, run, false, in, c);
+    if (!run) self->__following = self->__braking = false;
+  });
+}
+
+}  // namespace
+
+namespace stc::motion::sm3face {
+void registerSm3ControlAxisNatives(MotionLibrary& lib) { STC_SM3_NATIVE(SMC_ControlAxisByPos, SMC_ControlAxisByPos) }
+}  // namespace stc::motion::sm3face
