@@ -15,6 +15,10 @@ static_assert(kDims <= path::kMaxCoords);
 constexpr int kPlannerCapacity = 2 * Interpolator::kMaxInFlight + 4;
 constexpr double kTwoPi = 6.283185307179586;
 constexpr double kMaxOverride = 2.0;
+// Elements handed to the planner per cycle: building a segment (arc-length tables of splines
+// and ellipses) and the look-ahead pass cost up to ~50 us each, so the start of a path spreads
+// them over cycles instead of one long cycle; 4 per cycle is far above any feed's consumption.
+constexpr int kAppendsPerCycle = 4;
 // Set by SMC_PreAcknowledgeM on an M element: the path passes it without stopping.
 constexpr uint16_t kMarkPreAcknowledged = 1u << 9;
 
@@ -264,7 +268,7 @@ void Interpolator::processFront(const IpoControls& c, bool newCycle) {
 // Hands motion elements to the planner up to the next point where the path stops.
 void Interpolator::appendRuns(const IpoControls& c) {
   if (error_ != kIpoOk || hold_ != Hold::None) return;
-  while (appended_ < count_) {
+  for (int budget = kAppendsPerCycle; appended_ < count_;) {
     Item& it = at(appended_);
     if (!isMotion(it.e.type)) {
       if (isStopItem(it.e)) return;   // processFront runs it when the path has stopped there
@@ -277,7 +281,7 @@ void Interpolator::appendRuns(const IpoControls& c) {
       if (!idle) return;                                   // wait until the run has stopped
       if (c.waitAtNextStop && startedOnce_) return;        // hold at a stop point
     }
-    if (planner_->queued() + 1 >= planner_->capacity()) return;
+    if (planner_->queued() + 1 >= planner_->capacity() || budget-- == 0) return;
     if (!positioned_) {
       planner_->setPosition(toVec(it.e.start));
       positioned_ = true;
