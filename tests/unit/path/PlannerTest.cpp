@@ -524,3 +524,45 @@ TEST(PathPlanner, RandomSequencesAreContinuousWithinLimitsAndEndAtTheTarget) {
 }
 
 }  // namespace
+
+// A move appended after the planner ran dry (no setPosition in between) runs its full
+// trapezoid from the end point, and a Buffered move with a junction velocity passes the
+// (collinear) junction at that velocity instead of stopping.
+TEST(PathPlanner, AppendAfterRunningDryAndJunctionVelocity) {
+  PlannerConfig cfg;
+  cfg.dims = 3;
+  Planner p(cfg);
+  Vec b{};
+  b[0] = 10;
+  MoveSpec m;
+  m.kind = MoveKind::Line;
+  m.end = b;
+  m.buffer = BufferMode::Buffered;
+  m.dyn = {10, 100, 100, 0};
+  ASSERT_EQ(p.append(m).status, PathStatus::Ok);
+  for (int i = 0; i < 1100; ++i) p.advance(0.001);
+  ASSERT_TRUE(p.idle());
+  EXPECT_EQ(p.sample().pos[0], 10.0);
+  Vec c = b;
+  c[1] = 10;
+  m.end = c;
+  ASSERT_EQ(p.append(m).status, PathStatus::Ok);
+  EXPECT_NEAR(p.remaining(), 10.0, 1e-12);
+  EXPECT_NEAR(p.advance(0.001).pos[1], 0.5 * 100 * 1e-6, 1e-12);
+  int n = 1;
+  while (!p.idle() && n < 5000) p.advance(0.001), ++n;
+  EXPECT_EQ(n, 1100);
+  // collinear continuation with junction velocity 5: no stop at X = 20
+  Planner q(cfg);
+  m.end = {10, 0, 0};
+  ASSERT_EQ(q.append(m).status, PathStatus::Ok);
+  m.end = {20, 0, 0};
+  m.junctionVel = 5;
+  ASSERT_EQ(q.append(m).status, PathStatus::Ok);
+  double minV = 1e9;
+  while (!q.idle()) {
+    const Sample& s = q.advance(0.001);
+    if (s.pos[0] > 9 && s.pos[0] < 11) minV = std::min(minV, s.v);
+  }
+  EXPECT_NEAR(minV, 5.0, 0.2);
+}
