@@ -65,6 +65,10 @@ enum Mark : uint16_t {
   // Set by SMC_CheckVelocities once the element's end velocity (velEnd) is final;
   // the interpolator takes only elements that carry it (docs/cnc.md).
   MarkVelChecked = 1u << 8,
+  // Set by SMC_PreAcknowledgeM on an MCommand (or the G75 Sync) element: the
+  // interpolator passes it without stopping, and SMC_CheckVelocities computes the
+  // junction of the motion elements around it as if it were not there.
+  MarkMPreAcknowledged = 1u << 9,
 };
 
 enum class ToolSide : uint8_t { Off, Left, Right };       // G40 / G41 / G42
