@@ -89,8 +89,10 @@ VelocityCheckResult checkVelocities(std::span<Element> pending, bool endOfList, 
     while (j < pending.size() && passesThrough(pending[j])) ++j;
     double velEnd = 0;
     if (j == pending.size()) {
-      if (!endOfList && !cannotGrow) return r;   // wait for the successor
-      velEnd = 0;                                // end of the path (or no room to see further): stop
+      // Wait for the successor, unless the list has ended or the element is at the front of a
+      // queue that cannot grow (nothing before it to consume): then it ends with a stop.
+      if (!endOfList && !(cannotGrow && i == 0)) return r;
+      velEnd = 0;
     } else if (isStop(pending[j])) {
       velEnd = 0;
     } else {

@@ -48,9 +48,10 @@ struct VelocityCheckResult {
 // queue order): caps vel by the dry run, writes velEnd and sets MarkVelChecked.
 // A motion element is final once its next motion element is in `pending` (pre-
 // acknowledged M functions in between are skipped), a stop element follows (M,
-// dwell, G75, G92), or `endOfList`.  `cannotGrow`: nothing more can arrive before
-// these are consumed (a full queue with no checked element before them): the last
-// motion element then ends with 0 rather than waiting forever.
+// dwell, G75, G92), or `endOfList`.  `cannotGrow`: the queue is full and pending[0]
+// is at its front, so nothing more can arrive before it is consumed: if pending[0]
+// still lacks its successor (only pre-acknowledged M functions follow it) it ends
+// with 0 rather than waiting forever.
 VelocityCheckResult checkVelocities(std::span<Element> pending, bool endOfList, bool cannotGrow,
                                     const VelocityCheckOptions& o);
 

@@ -95,6 +95,11 @@ TEST(VelocityCheck, PreAcknowledgedMIsPassedThrough) {
   two[1].marks |= MarkMPreAcknowledged;
   EXPECT_EQ(checkVelocities(two, false, true, {}).finalized, 2u);
   EXPECT_EQ(two[0].velEnd, 0);
+  // Not at the front of the queue (checked elements before it can be consumed): it waits.
+  std::vector<Element> three(d.els.begin(), d.els.begin() + 2);
+  three.insert(three.begin(), d.els[0]);
+  three[2].marks |= MarkMPreAcknowledged;
+  EXPECT_EQ(checkVelocities(std::span(three).subspan(1), false, false, {}).finalized, 0u);
 }
 
 TEST(VelocityCheck, StreamingWaitsForTheSuccessor) {
