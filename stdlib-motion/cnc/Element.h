@@ -102,7 +102,8 @@ struct EllipseGeo {        // EllClw / EllCclw (XY plane)
 };
 struct SplineGeo {         // Spline: p(u) = h00 p0 + h10 c t0 + h01 p1 + h11 c t1
   Vec3 t0, t1;             // unit tangents at the start and the end
-  double chord;            // c: chord length over the spline's coordinates
+  double chord;            // c: the tangent magnitude at both ends; the decoder's pieces use the
+                           // chord length, SMC_SmoothPath's corner splines 3 x the cut distance
   uint8_t dims;            // 2 (G5: X/Y, Z linear in u) or 3 (G10: X/Y/Z)
 };
 struct ParabolaGeo {       // Parabola: quadratic Bezier in X/Y, Z linear
