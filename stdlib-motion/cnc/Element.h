@@ -65,6 +65,10 @@ enum Mark : uint16_t {
   // Set by SMC_CheckVelocities once the element's end velocity (velEnd) is final;
   // the interpolator takes only elements that carry it (docs/cnc.md).
   MarkVelChecked = 1u << 8,
+  // Set by SMC_PreAcknowledgeM on an MCommand (or the G75 Sync) element: the
+  // interpolator passes it without stopping, and SMC_CheckVelocities computes the
+  // junction of the motion elements around it as if it were not there.
+  MarkMPreAcknowledged = 1u << 9,
 };
 
 enum class ToolSide : uint8_t { Off, Left, Right };       // G40 / G41 / G42
@@ -98,7 +102,8 @@ struct EllipseGeo {        // EllClw / EllCclw (XY plane)
 };
 struct SplineGeo {         // Spline: p(u) = h00 p0 + h10 c t0 + h01 p1 + h11 c t1
   Vec3 t0, t1;             // unit tangents at the start and the end
-  double chord;            // c: chord length over the spline's coordinates
+  double chord;            // c: the tangent magnitude at both ends; the decoder's pieces use the
+                           // chord length, SMC_SmoothPath's corner splines 3 x the cut distance
   uint8_t dims;            // 2 (G5: X/Y, Z linear in u) or 3 (G10: X/Y/Z)
 };
 struct ParabolaGeo {       // Parabola: quadratic Bezier in X/Y, Z linear

@@ -20,7 +20,7 @@ constexpr double kMaxOverride = 2.0;
 // them over cycles instead of one long cycle; 4 per cycle is far above any feed's consumption.
 constexpr int kAppendsPerCycle = 4;
 // Set by SMC_PreAcknowledgeM on an M element: the path passes it without stopping.
-constexpr uint16_t kMarkPreAcknowledged = 1u << 9;
+constexpr uint16_t kMarkPreAcknowledged = MarkMPreAcknowledged;
 
 path::Vec toVec(const Pos& p) {
   path::Vec v{};

@@ -172,6 +172,7 @@ void registerSm3FileNatives(MotionLibrary& lib);    // Sm3File.cpp (CAA File: FI
 void registerSm3NcNatives(MotionLibrary& lib);      // Sm3NcDecoder.cpp (SMC_ReadNCFile, SMC_NCDecoder)
 void registerSm3InterpolatorNatives(MotionLibrary& lib);   // Sm3Interpolator.cpp (SMC_Interpolator, SMC_GetMParameters)
 void registerSm3ControlAxisNatives(MotionLibrary& lib);   // Sm3ControlAxisByPos.cpp (SMC_ControlAxisByPos)
+void registerSm3PreprocessNatives(MotionLibrary& lib);   // Sm3Preprocess.cpp (SMC_SmoothPath, SMC_CheckVelocities, ...)
 
 // Like axisFb, for bodies that take the FB's kernel slot: call(kernel, slot, axis, ctx).
 template <class T, class F>
