@@ -170,6 +170,7 @@ void axisFb(T* self, F call) {
 void registerSm3DiagNatives(MotionLibrary& lib);
 void registerSm3FileNatives(MotionLibrary& lib);    // Sm3File.cpp (CAA File: FILE.*)
 void registerSm3NcNatives(MotionLibrary& lib);      // Sm3NcDecoder.cpp (SMC_ReadNCFile, SMC_NCDecoder)
+void registerSm3ToolCorrNatives(MotionLibrary& lib);   // Sm3ToolCorr.cpp (SMC_ToolCorr, SMC_AvoidLoop)
 
 // Like axisFb, for bodies that take the FB's kernel slot: call(kernel, slot, axis, ctx).
 template <class T, class F>

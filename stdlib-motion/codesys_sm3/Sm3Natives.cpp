@@ -231,6 +231,7 @@ void registerSm3Natives(MotionLibrary& lib) {
   registerSm3DiagNatives(lib);
   registerSm3FileNatives(lib);
   registerSm3NcNatives(lib);
+  registerSm3ToolCorrNatives(lib);
   registerSm3ProfilesNatives(lib);
   registerSm3HomingNatives(lib);
   registerSm3SyncNatives(lib);
