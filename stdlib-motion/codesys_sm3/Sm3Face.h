@@ -173,6 +173,7 @@ void registerSm3NcNatives(MotionLibrary& lib);      // Sm3NcDecoder.cpp (SMC_Rea
 void registerSm3InterpolatorNatives(MotionLibrary& lib);   // Sm3Interpolator.cpp (SMC_Interpolator, SMC_GetMParameters)
 void registerSm3ControlAxisNatives(MotionLibrary& lib);   // Sm3ControlAxisByPos.cpp (SMC_ControlAxisByPos)
 void registerSm3PreprocessNatives(MotionLibrary& lib);   // Sm3Preprocess.cpp (SMC_SmoothPath, SMC_CheckVelocities, ...)
+void registerSm3ToolCorrNatives(MotionLibrary& lib);   // Sm3ToolCorr.cpp (SMC_ToolCorr, SMC_AvoidLoop)
 
 // Like axisFb, for bodies that take the FB's kernel slot: call(kernel, slot, axis, ctx).
 template <class T, class F>

@@ -234,6 +234,7 @@ void registerSm3Natives(MotionLibrary& lib) {
   registerSm3InterpolatorNatives(lib);
   registerSm3ControlAxisNatives(lib);
   registerSm3PreprocessNatives(lib);
+  registerSm3ToolCorrNatives(lib);
   registerSm3ProfilesNatives(lib);
   registerSm3HomingNatives(lib);
   registerSm3SyncNatives(lib);

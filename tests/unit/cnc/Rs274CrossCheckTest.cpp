@@ -4,8 +4,10 @@
 // decoder gets the DIN 66025 spelling; every TRAVERSE / LINE / ARC / DWELL /
 // SETPOS record must match an element in order (end points and arc centres
 // 1e-9, plane, direction, source line) and every FEED the velocity of the
-// motion elements after it.  Programs with tool radius compensation are
-// compared once SMC_ToolCorr exists (the decoder only marks G41/G42).
+// motion elements after it.  The 30 programs with tool radius compensation go
+// through the decoder and then ToolCorr in TC_RAMP_IN, whose entry and exit are
+// rs274's (docs/cnc.md, "Tool radius correction"): every record is compared the
+// same way, corner arcs included.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,6 +19,7 @@
 #include "basic/Diagnostics.h"
 #include "basic/SourceManager.h"
 #include "stdlib-motion/cnc/Decoder.h"
+#include "stdlib-motion/cnc/ToolCorr.h"
 
 #ifndef STC_RS274_DIR
 #error "STC_RS274_DIR (tests/cnc/rs274) must be defined"
@@ -56,7 +59,7 @@ bool has(const std::string& flags, const std::string& f) { return ("," + flags +
 constexpr double kTol = 1e-9;
 
 // Checks one program; returns the number of records compared (failures via EXPECT).
-int checkProgram(const Program& p) {
+int checkProgram(const Program& p, bool toolCorr) {
   SCOPED_TRACE(p.name);
   const std::string dir = STC_RS274_DIR;
   SourceManager sm;
@@ -76,8 +79,13 @@ int checkProgram(const Program& p) {
     }
     records.push_back(line);
   }
-  const std::vector<Element> els = decodeAll(sm, file, diags, opts);
+  std::vector<Element> els = decodeAll(sm, file, diags, opts);
   EXPECT_EQ(diags.errorCount(), 0u) << (diags.diagnostics().empty() ? "" : renderText(sm, diags.diagnostics()[0]));
+  if (toolCorr) {
+    ToolCorrError err = ToolCorrError::None;
+    els = correctAll(els, ToolCorrMode::RampIn, 0, &err);
+    EXPECT_EQ(err, ToolCorrError::None);
+  }
   size_t next = 0;
   double feed = -1;
   int compared = 0;
@@ -93,6 +101,7 @@ int checkProgram(const Program& p) {
       continue;
     }
     if (kind == "PLANE") continue;   // a modal state, checked through the arcs' planes
+    if (kind == "COMP") continue;    // G41/G42/G40: what they do is in the records that follow
     // The next element of the decoder's output.
     if (next >= els.size()) {
       ADD_FAILURE() << "the decoder produced fewer elements than the trace";
@@ -153,14 +162,28 @@ TEST(Rs274CrossCheck, DecodedGeometryMatchesRs274) {
   ASSERT_GE(programs.size(), 100u);
   int checked = 0, records = 0;
   for (const Program& p : programs) {
-    if (has(p.flags, "comp_left") || has(p.flags, "comp_right")) continue;   // SMC_ToolCorr (not yet)
-    records += checkProgram(p);
+    if (has(p.flags, "comp_left") || has(p.flags, "comp_right")) continue;   // below
+    records += checkProgram(p, false);
     ++checked;
   }
   EXPECT_GE(checked, 80);
   RecordProperty("programs", checked);
   RecordProperty("records", records);
   std::printf("rs274 cross-check: %d programs, %d records\n", checked, records);
+}
+
+// The programs with G41/G42: decoder + ToolCorr (TC_RAMP_IN) against rs274's compensated path.
+TEST(Rs274CrossCheck, ToolCorrMatchesRs274) {
+  int checked = 0, records = 0;
+  for (const Program& p : corpus()) {
+    if (!has(p.flags, "comp_left") && !has(p.flags, "comp_right")) continue;
+    records += checkProgram(p, true);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 30);
+  RecordProperty("programs", checked);
+  RecordProperty("records", records);
+  std::printf("rs274 tool correction cross-check: %d programs, %d records\n", checked, records);
 }
 
 }  // namespace
