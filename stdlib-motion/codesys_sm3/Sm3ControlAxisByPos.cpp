@@ -57,9 +57,13 @@ void SMC_ControlAxisByPos(sm3::SMC_ControlAxisByPos* self) {
       self->__braking = true;
       self->__catching = false;
       self->bStopIpo = false;
+      // The interpolator standing (IPO_FINISHED / IPO_WAIT): the path ended at rest within the
+      // last cycle, so the axis stays where it is; else brake with the gap deceleration.
+      const bool pathAtRest = self->iStatus == 5 || self->iStatus == 6;
       Profile pr;
       const Limits lim{std::max(std::fabs(next.v), 1e-9), gapOk ? gap.dec : 1e15, gapOk ? gap.dec : 1e15, gap.jerk};
-      if (next.v != 0 && planVelocity(next, 0, lim, pr) == PlanStatus::Ok && pr.duration() > dt) next = pr.at(dt);
+      if (pathAtRest) next = {next.p, 0, 0};
+      else if (next.v != 0 && planVelocity(next, 0, lim, pr) == PlanStatus::Ok && pr.duration() > dt) next = pr.at(dt);
       else next = {next.p + 0.5 * next.v * std::min(dt, 1e-3), 0, 0};
     } else {
       const double target = self->fSetPosition;
@@ -88,12 +92,17 @@ void SMC_ControlAxisByPos(sm3::SMC_ControlAxisByPos* self) {
     self->__p = next.p;
     self->__v = next.v;
     self->__a = next.a;
+    // position and velocity both given: the axis stands exactly when the stream stops
+    // (an abandoned follow command keeps its last velocity)
     FollowInputs in;
-    in.mask = kFollowPosition;
+    in.mask = kFollowPosition | kFollowVelocity;
     in.position = next.p;
-    const bool run = !(self->__braking && next.v == 0);
-    callFollow(k, fb, ax, run, false, in, c);
-    if (!run) self->__following = self->__braking = false;
+    in.velocity = next.v;
+    callFollow(k, fb, ax, true, false, in, c);
+    if (self->__braking && next.v == 0) {
+      callFollow(k, fb, ax, false, false, in, c);
+      self->__following = self->__braking = false;
+    }
   });
 }
 
