@@ -33,6 +33,15 @@ bool isStopItem(const Element& e) {
   return !(e.type == MoveType::MCommand && (e.marks & kMarkPreAcknowledged));
 }
 
+// The full turns beyond the first partial one that a sweep of `sweep` rad makes: the path
+// builders take "from a to b plus turns"; a whole number of turns ends where it started (a
+// full circle plus the rest).
+int extraTurns(double sweep) {
+  const double k = std::fabs(sweep) / kTwoPi;
+  const double whole = std::round(k);
+  return (whole >= 1 && std::fabs(k - whole) < 1e-9) ? static_cast<int>(whole) - 1 : static_cast<int>(std::floor(k));
+}
+
 bool finitePos(const Pos& p) {
   for (double v : p)
     if (!std::isfinite(v)) return false;
@@ -118,11 +127,7 @@ int16_t Interpolator::buildSegment(const Element& e, path::Segment& out) const {
     case MoveType::Clw:
     case MoveType::Cclw: {
       const ArcGeo& g = e.arc;
-      const double k = std::fabs(g.sweep) / kTwoPi;
-      const double whole = std::round(k);
-      // a whole number of turns ends where it started (in the plane): a full circle plus turns
-      const int turns = (whole >= 1 && std::fabs(k - whole) < 1e-9) ? static_cast<int>(whole) - 1
-                                                                    : static_cast<int>(std::floor(k));
+      const int turns = extraTurns(g.sweep);
       path::Vec c = a;
       for (int i = 0; i < 3; ++i) c[i] = g.centre[i];
       path::Vec n{};
@@ -136,10 +141,7 @@ int16_t Interpolator::buildSegment(const Element& e, path::Segment& out) const {
     case MoveType::EllCclw: {
       const EllipseGeo& g = e.ellipse;
       if (!(g.a > 0 && g.b > 0)) return kIpoPathExceeded;
-      const double k = std::fabs(g.sweepPhi) / kTwoPi;
-      const double whole = std::round(k);
-      const int turns = (whole >= 1 && std::fabs(k - whole) < 1e-9) ? static_cast<int>(whole) - 1
-                                                                    : static_cast<int>(std::floor(k));
+      const int turns = extraTurns(g.sweepPhi);
       path::Vec c = a;
       for (int i = 0; i < 3; ++i) c[i] = g.centre[i];
       path::Vec n{};
