@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "stdlib-motion/codesys_sm3/Sm3Face.h"
+#include "stdlib-motion/core/InputBounds.h"
 #include "stdlib-motion/core/Profiles.h"
 #include "stdlib-motion/core/Trajectory.h"
 
@@ -14,6 +15,7 @@ using namespace stc::motion::sm3face;
 namespace {
 
 constexpr int16_t kGapParametersInvalid = 510;   // SMC_CAPV_GAP_VELACCDEC_INVALID (gap dynamics not usable)
+constexpr int16_t kInvalidParameter = 1820;      // SMC_OS_INVALID_PARAMETER (set position NaN, infinite or beyond 1e12)
 
 bool usable(double x, double max) { return std::isfinite(x) && x > 0 && x <= max; }
 
@@ -24,12 +26,15 @@ void SMC_ControlAxisByPos(sm3::SMC_ControlAxisByPos* self) {
                      std::isfinite(self->fGapJerk) && self->fGapJerk >= 1e15 ? 0.0 : self->fGapJerk};
     const bool gapOk = usable(gap.vel, 1e9) && usable(gap.acc, 1e16) && usable(gap.dec, 1e16) &&
                        std::isfinite(self->fGapJerk) && self->fGapJerk > 0;
-    const bool want = self->bEnable && std::isfinite(self->fSetPosition);
-    if (self->bEnable && !std::isfinite(self->fSetPosition)) {
-      // a non-finite set position is never written: brake as if disabled, and say why
+    // A set position that is not finite or beyond the position bound is never written: the axis
+    // brakes as if disabled, and the error says why (kept over the follow command's outputs).
+    const bool badSetPosition = self->bEnable && !bounds::position(self->fSetPosition);
+    const bool want = self->bEnable && !badSetPosition;
+    auto reportInput = [&] {
+      if (!badSetPosition) return;
       self->bError = true;
-      self->iErrorID = kGapParametersInvalid;
-    }
+      self->iErrorID = kInvalidParameter;
+    };
     if (want && !self->__following) {
       if (self->bAvoidGaps && !gapOk) {
         self->bError = true;
@@ -49,7 +54,7 @@ void SMC_ControlAxisByPos(sm3::SMC_ControlAxisByPos* self) {
       self->bStopIpo = false;
       FollowInputs none;
       callFollow(k, fb, ax, false, false, none, c);
-      return;
+      return reportInput();
     }
     Kinematic next{self->__p, self->__v, self->__a};
     if (!want) {
@@ -103,6 +108,7 @@ void SMC_ControlAxisByPos(sm3::SMC_ControlAxisByPos* self) {
       callFollow(k, fb, ax, false, false, in, c);
       self->__following = self->__braking = false;
     }
+    reportInput();
   });
 }
 
