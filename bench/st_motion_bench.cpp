@@ -111,11 +111,41 @@ std::string trafoProgram(int n) {
   return s.str();
 }
 
+// Issue 16: the CNC pipeline as users write it, all from ST in one 1 ms task: SMC_NCDecoder
+// (a G-code loop of tangent splines, arcs and helices, 1000 passes: a path of some 20,000
+// elements) -> SMC_CheckVelocities -> SMC_Interpolator -> 3 x SMC_ControlAxisByPos.
+std::string cncProgram() {
+  std::ostringstream s;
+  s << "VAR_GLOBAL AxisX, AxisY, AxisZ : AXIS_REF_SM3; END_VAR\n"
+    << "PROGRAM MAIN\nVAR\n  px, py, pz : MC_Power;\n  dec : SMC_NCDecoder;\n  cv : SMC_CheckVelocities;\n"
+    << "  ipo : SMC_Interpolator;\n  cx, cy, cz : SMC_ControlAxisByPos;\n  prog : SMC_CNC_REF;\n"
+    << "  ring : ARRAY[0..99] OF SMC_GEOINFO;\n  cycle : DINT;\n"
+    << "  text : STRING(1000) := 'N10 G1 X0 Y10 F200 E2000 E-2000$NN20 G36 D1000$N"
+       "N30 G5 X10 Y12.35$NN31 G5 X20 Y12.92$NN32 G5 X30 Y11.28$NN33 G5 X40 Y9.37$NN34 G5 X50 Y10.29$NN35 G5 X60 Y12.21$N"
+       "N40 G1 X70 Y10$NN41 G2 X80 Y0 Z1 I0 J-10$NN42 G3 X90 Y-10 I10 J0$NN43 G1 X90 Y-20$NN44 G2 X70 Y-40 I-20 J0 Z0$N"
+       "N45 G1 X0 Y-40$NN46 G2 X-20 Y-20 I0 J20$NN47 G1 X-20 Y-10$NN48 G2 X0 Y10 I20 J0$NN50 G37 D-1$NN60 G20 L30$N';\n"
+    << "END_VAR\n"
+    << "IF cycle = 0 THEN prog.pText := ADR(text); prog.dwTextSize := INT_TO_UDINT(LEN(text)); END_IF\n"
+    << "cycle := cycle + 1;\n"
+    << "px(Axis := AxisX, Enable := TRUE, bRegulatorOn := TRUE, bDriveStart := TRUE);\n"
+    << "py(Axis := AxisY, Enable := TRUE, bRegulatorOn := TRUE, bDriveStart := TRUE);\n"
+    << "pz(Axis := AxisZ, Enable := TRUE, bRegulatorOn := TRUE, bDriveStart := TRUE);\n"
+    << "dec(ncprog := prog, bExecute := TRUE, nSizeOutQueue := SIZEOF(ring), pbyBufferOutQueue := ADR(ring));\n"
+    << "cv(bExecute := TRUE, poqDataIn := dec.poqDataOut);\n"
+    << "ipo(bExecute := cycle > 2, poqDataIn := cv.poqDataOut, dwIpoTime := 1000, bEmergency_Stop := cx.bStopIpo OR cy.bStopIpo OR cz.bStopIpo);\n"
+    << "cx(Axis := AxisX, iStatus := ipo.iStatus, bEnable := ipo.bWorking, fSetPosition := ipo.piSetPosition.dX, fGapVelocity := 100, fGapAcceleration := 1000);\n"
+    << "cy(Axis := AxisY, iStatus := ipo.iStatus, bEnable := ipo.bWorking, fSetPosition := ipo.piSetPosition.dY, fGapVelocity := 100, fGapAcceleration := 1000);\n"
+    << "cz(Axis := AxisZ, iStatus := ipo.iStatus, bEnable := ipo.bWorking, fSetPosition := ipo.piSetPosition.dZ, fGapVelocity := 100, fGapAcceleration := 1000);\n"
+    << "END_PROGRAM\n";
+  return s.str();
+}
+
 // Seconds of wall time per cycle over `cycles` cycles (after a warm-up).
-double perCycle(int n, uint64_t cycles, bool cams, bool reads, bool groups = false, bool trafo = false, bool scara = false) {
-  const std::string file = "/tmp/stc_st_motion_bench_" + std::string(trafo ? "trafo_" : scara ? "scara_" : groups ? "group_" : cams ? "cam_" : "") +
+double perCycle(int n, uint64_t cycles, bool cams, bool reads, bool groups = false, bool trafo = false, bool scara = false,
+                bool cnc = false) {
+  const std::string file = "/tmp/stc_st_motion_bench_" + std::string(cnc ? "cnc_" : trafo ? "trafo_" : scara ? "scara_" : groups ? "group_" : cams ? "cam_" : "") +
                            (reads ? "reads_" : "") + std::to_string(n) + ".st";
-  std::ofstream(file) << (trafo ? trafoProgram(n) : groups ? groupProgram(n, scara) : cams ? camProgram(n, reads) : program(n, reads));
+  std::ofstream(file) << (cnc ? cncProgram() : trafo ? trafoProgram(n) : groups ? groupProgram(n, scara) : cams ? camProgram(n, reads) : program(n, reads));
   Compilation comp;
   comp.addPath(file);
   CompileOptions co;
@@ -151,7 +181,7 @@ double perCycle(int n, uint64_t cycles, bool cams, bool reads, bool groups = fal
 
 int main(int argc, char** argv) {
   const uint64_t cycles = argc > 1 ? std::stoull(argv[1]) : 5000;
-  const std::string only = argc > 2 ? argv[2] : "";   // "axes", "cams", "groups", "scara" or "trafo": one scenario
+  const std::string only = argc > 2 ? argv[2] : "";   // "axes", "cams", "groups", "scara", "cnc" or "trafo": one scenario
   for (bool reads : {false, true})
     for (int n : {1, 100, 1000}) {
       if ((!only.empty() && only != "axes") || (reads && n != 1000)) continue;
@@ -181,6 +211,12 @@ int main(int argc, char** argv) {
     for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(n, cycles, false, false, true, false, true));
     std::printf("%5d SCARA groups (Kin_Scara2_Z, the same squares in MCS through the inverse kinematics): %8.2f us per cycle (best of 3, %llu cycles)\n",
                 n, best * 1e6, static_cast<unsigned long long>(cycles));
+  }
+  if (only.empty() || only == "cnc") {
+    double best = 1e9;
+    for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(1, cycles, false, false, false, false, false, true));
+    std::printf("    1 CNC pipeline (SMC_NCDecoder -> SMC_CheckVelocities -> SMC_Interpolator -> 3 x SMC_ControlAxisByPos from ST): %8.2f us per cycle (best of 3, %llu cycles)\n",
+                best * 1e6, static_cast<unsigned long long>(cycles));
   }
   if (only.empty() || only == "trafo") {
     const int n = 1000;
