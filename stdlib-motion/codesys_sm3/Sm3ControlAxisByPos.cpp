@@ -35,6 +35,12 @@ void SMC_ControlAxisByPos(sm3::SMC_ControlAxisByPos* self) {
       self->bError = true;
       self->iErrorID = kInvalidParameter;
     };
+    if (self->__ending) {   // braked to rest last cycle: end the command (bBusy falls)
+      FollowInputs none;
+      callFollow(k, fb, ax, false, false, none, c);
+      if (fb.out.busy && ax.controller == &fb) k.finish(fb, &c, c.cycle, false, false, Error::None);
+      self->__following = self->__braking = self->__ending = false;
+    }
     if (want && !self->__following) {
       if (self->bAvoidGaps && !gapOk) {
         self->bError = true;
@@ -104,10 +110,8 @@ void SMC_ControlAxisByPos(sm3::SMC_ControlAxisByPos* self) {
     in.position = next.p;
     in.velocity = next.v;
     callFollow(k, fb, ax, true, false, in, c);
-    if (self->__braking && next.v == 0) {
-      callFollow(k, fb, ax, false, false, in, c);
-      self->__following = self->__braking = false;
-    }
+    // Stands: the step of this cycle applies the state at rest; the command ends in the next call.
+    if (self->__braking && next.v == 0) self->__ending = true;
     reportInput();
   });
 }
