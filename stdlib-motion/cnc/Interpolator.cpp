@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stdlib-motion/cnc/PathSegment.h"
 #include "stdlib-motion/path/Planner.h"
 
 namespace stc::cnc {
@@ -13,7 +14,6 @@ namespace {
 constexpr int kDims = kAxisCount;   // the planner runs all 11 axes: X Y Z A B C P Q U V W
 static_assert(kDims <= path::kMaxCoords);
 constexpr int kPlannerCapacity = 2 * Interpolator::kMaxInFlight + 4;
-constexpr double kTwoPi = 6.283185307179586;
 constexpr double kMaxOverride = 2.0;
 // Elements handed to the planner per cycle: building a segment (arc-length tables of splines
 // and ellipses) and the look-ahead pass cost up to ~50 us each, so the start of a path spreads
@@ -22,24 +22,9 @@ constexpr int kAppendsPerCycle = 4;
 // Set by SMC_PreAcknowledgeM on an M element: the path passes it without stopping.
 constexpr uint16_t kMarkPreAcknowledged = MarkMPreAcknowledged;
 
-path::Vec toVec(const Pos& p) {
-  path::Vec v{};
-  for (int i = 0; i < kDims; ++i) v[i] = p[i];
-  return v;
-}
-
 bool isStopItem(const Element& e) {
   if (isMotion(e.type)) return false;
   return !(e.type == MoveType::MCommand && (e.marks & kMarkPreAcknowledged));
-}
-
-// The full turns beyond the first partial one that a sweep of `sweep` rad makes: the path
-// builders take "from a to b plus turns"; a whole number of turns ends where it started (a
-// full circle plus the rest).
-int extraTurns(double sweep) {
-  const double k = std::fabs(sweep) / kTwoPi;
-  const double whole = std::round(k);
-  return (whole >= 1 && std::fabs(k - whole) < 1e-9) ? static_cast<int>(whole) - 1 : static_cast<int>(std::floor(k));
 }
 
 bool finitePos(const Pos& p) {
@@ -117,72 +102,6 @@ void Interpolator::fail(int16_t error) {
   if (planner_ && !planner_->idle() && hold_ != Hold::Emergency) planner_->interrupt(dec, jerk);
 }
 
-// Builds the planner segment of a motion element, from its own start point.
-int16_t Interpolator::buildSegment(const Element& e, path::Segment& out) const {
-  const path::Vec a = toVec(e.start), b = toVec(e.end);
-  path::GeoStatus st = path::GeoStatus::BadParameter;
-  switch (e.type) {
-    case MoveType::Lin:
-    case MoveType::LinPos: st = path::Segment::line(a, b, kDims, out); break;
-    case MoveType::Clw:
-    case MoveType::Cclw: {
-      const ArcGeo& g = e.arc;
-      const int turns = extraTurns(g.sweep);
-      path::Vec c = a;
-      for (int i = 0; i < 3; ++i) c[i] = g.centre[i];
-      path::Vec n{};
-      for (int i = 0; i < 3; ++i) n[i] = g.normal[i];
-      st = path::Segment::arcCenter(a, c, b, n, g.sweep > 0, turns, kDims, out);
-      if (st == path::GeoStatus::Ok && !(std::fabs(out.sweep() - std::fabs(g.sweep)) <= 1e-9 * std::max(1.0, std::fabs(g.sweep))))
-        return kIpoPathExceeded;
-      break;
-    }
-    case MoveType::EllClw:
-    case MoveType::EllCclw: {
-      const EllipseGeo& g = e.ellipse;
-      if (!(g.a > 0 && g.b > 0)) return kIpoPathExceeded;
-      const int turns = extraTurns(g.sweepPhi);
-      path::Vec c = a;
-      for (int i = 0; i < 3; ++i) c[i] = g.centre[i];
-      path::Vec n{};
-      n[2] = 1;
-      st = path::Segment::ellipse(a, c, b, g.majorAngle, g.b / g.a, n, g.sweepPhi > 0, turns, kDims, out);
-      break;
-    }
-    case MoveType::Spline:
-    case MoveType::Parabola: {
-      double coef[path::kMaxCoords][6] = {};
-      for (int i = 0; i < kDims; ++i) {   // linear in u unless the curve says otherwise
-        coef[i][0] = e.start[i];
-        coef[i][1] = e.end[i] - e.start[i];
-      }
-      if (e.type == MoveType::Spline) {
-        const SplineGeo& g = e.spline;
-        const int dims = g.dims == 3 ? 3 : 2;
-        for (int i = 0; i < dims; ++i) {
-          const double p0 = e.start[i], p1 = e.end[i], m0 = g.chord * g.t0[i], m1 = g.chord * g.t1[i];
-          coef[i][0] = p0;
-          coef[i][1] = m0;
-          coef[i][2] = -3 * p0 - 2 * m0 + 3 * p1 - m1;
-          coef[i][3] = 2 * p0 + m0 - 2 * p1 + m1;
-        }
-      } else {
-        const ParabolaGeo& g = e.parabola;
-        for (int i = 0; i < 2; ++i) {
-          const double p0 = e.start[i], p1 = e.end[i], c = g.control[i];
-          coef[i][0] = p0;
-          coef[i][1] = 2 * (c - p0);
-          coef[i][2] = p0 - 2 * c + p1;
-        }
-      }
-      st = path::Segment::poly(coef, kDims, out);
-      break;
-    }
-    default: return kIpoPathExceeded;
-  }
-  return st == path::GeoStatus::Ok ? kIpoOk : kIpoPathExceeded;
-}
-
 void Interpolator::applyHolds(const IpoControls& c) {
   Hold want = c.emergencyStop ? Hold::Emergency : c.quickStop ? Hold::Quick : c.slowStop ? Hold::Slow : Hold::None;
   if (want == Hold::Quick && !(std::isfinite(c.quickDecel) && c.quickDecel > 0 && c.quickDecel <= 1e12)) {
@@ -245,7 +164,7 @@ void Interpolator::processFront(const IpoControls& c, bool newCycle) {
           dwellStarted_ = false;
           break;
         case MoveType::InitPos:
-          planner_->setPosition(toVec(it.e.end));
+          planner_->setPosition(toPathVec(it.e.end));
           positioned_ = true;
           break;
         default: break;   // G75 sync: reached
@@ -285,10 +204,10 @@ void Interpolator::appendRuns(const IpoControls& c) {
     }
     if (planner_->queued() + 1 >= planner_->capacity() || budget-- == 0) return;
     if (!positioned_) {
-      planner_->setPosition(toVec(it.e.start));
+      planner_->setPosition(toPathVec(it.e.start));
       positioned_ = true;
     }
-    const int16_t geo = buildSegment(it.e, *scratch_);
+    const int16_t geo = buildPathSegment(it.e, *scratch_) ? kIpoOk : kIpoPathExceeded;
     if (geo != kIpoOk) return fail(geo);
     path::MoveSpec m;
     m.kind = path::MoveKind::Prebuilt;

@@ -132,7 +132,6 @@ private:
   void applyHolds(const IpoControls& c);
   void processFront(const IpoControls& c, bool newCycle);
   void appendRuns(const IpoControls& c);
-  int16_t buildSegment(const Element& e, path::Segment& out) const;
   void collectEvents();
   void fireSwitches(double way);
   void updateStatus(double prevAcc);

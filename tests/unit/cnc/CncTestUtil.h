@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <string>
@@ -84,6 +86,42 @@ inline void expectPos(const Pos& p, std::initializer_list<double> xyz, double to
 }
 inline void expectVec(const Vec3& p, Vec3 q, double tol = kTol) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(p[i], q[i], tol) << "component " << i;
+}
+
+// The junction rule of SMC_CheckVelocities (simplified for the tests): 0 at the end, before
+// and after non-motion elements and at corners; else the smaller velocity.
+inline void checkVelocities(std::vector<Element>& els) {
+  for (size_t i = 0; i < els.size(); ++i) {
+    Element& e = els[i];
+    e.marks |= MarkVelChecked;
+    e.velEnd = 0;
+    if (!isMotion(e.type) || i + 1 >= els.size()) continue;
+    const Element& n = els[i + 1];
+    if (!isToolPath(e.type) || !isToolPath(n.type)) continue;
+    const Vec3 a = endTangent(e), b = startTangent(n);
+    if (dot(a, b) > std::cos(0.001 * kPi / 180)) e.velEnd = std::min(e.vel, n.vel);
+  }
+}
+
+// Distance of p from the element's geometry (sampled finely, refined by golden section).
+inline double distanceToElement(const Element& e, const Pos& p) {
+  auto d2 = [&](double u) {
+    const Pos q = point(e, u);
+    double s = 0;
+    for (int i = 0; i < 3; ++i) s += (q[i] - p[i]) * (q[i] - p[i]);
+    return s;
+  };
+  int best = 0;
+  const int n = 200;
+  for (int i = 1; i <= n; ++i)
+    if (d2(double(i) / n) < d2(double(best) / n)) best = i;
+  double lo = std::max(0.0, (best - 1.0) / n), hi = std::min(1.0, (best + 1.0) / n);
+  for (int it = 0; it < 70; ++it) {
+    const double m1 = lo + (hi - lo) * 0.381966, m2 = hi - (hi - lo) * 0.381966;
+    if (d2(m1) < d2(m2)) hi = m2;
+    else lo = m1;
+  }
+  return std::sqrt(d2(0.5 * (lo + hi)));
 }
 
 }  // namespace stc::cnc::test
