@@ -118,7 +118,6 @@ int16_t Interpolator2Dir::feed(const Element& e) {
     out_.pos = e.start;
   }
   ++count_;
-  if (cfg_.startAtEnd && count_ == capacity_ && !endOfList_) fail(kPathFitsNotInQueue);
   return error_;
 }
 
@@ -526,7 +525,10 @@ const IpoOutput& Interpolator2Dir::step(const IpoControls& c) {
     cc.override = v_ >= 0 ? 1e-300 : -1e-300;   // keep the direction: the error stop brakes along the path
   }
   if (c.quickStop && !(std::isfinite(c.quickDecel) && c.quickDecel > 0 && c.quickDecel <= 1e12)) fail(kIpoInvalidParameter);
-  if (!started_) startAtEndIfReady();
+  if (!started_) {
+    if (count_ == capacity_ && !endOfList_) fail(kPathFitsNotInQueue);   // the path does not fit
+    startAtEndIfReady();
+  }
   if (started_ && count_ > 0) {
     serveStopItem(cc);
     move(cc);

@@ -205,10 +205,11 @@ const IpoOutput& XInterpolator::step(double x) {
     out_.pos = passed ? it.e.end : it.e.start;
     way_ = passed ? it.wayEnd : it.wayStart;
     atEnd = passed && ctl_ + 1 == count_;
-  } else if (nx >= it.xe - tol) {
+  } else if (nx >= it.xe - tol) {   // at the element's end (within rounding), or beyond the last one
     out_.pos = it.e.end;
     way_ = it.wayEnd;
     atEnd = ctl_ + 1 == count_;
+    if (!(atEnd && endOfList_) && nx <= it.xe + tol) out_.pos[AxX] = x;   // X exactly as given
     path::PathPoint pp;
     segs_[slot].eval(segs_[slot].length(), pp);
     const double n = std::sqrt(pp.d1[0] * pp.d1[0] + pp.d1[1] * pp.d1[1] + pp.d1[2] * pp.d1[2]);

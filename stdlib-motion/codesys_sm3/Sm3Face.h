@@ -171,6 +171,8 @@ void registerSm3DiagNatives(MotionLibrary& lib);
 void registerSm3FileNatives(MotionLibrary& lib);    // Sm3File.cpp (CAA File: FILE.*)
 void registerSm3NcNatives(MotionLibrary& lib);      // Sm3NcDecoder.cpp (SMC_ReadNCFile, SMC_NCDecoder)
 void registerSm3InterpolatorNatives(MotionLibrary& lib);   // Sm3Interpolator.cpp (SMC_Interpolator, SMC_GetMParameters)
+void registerSm3Interpolator2DirNatives(MotionLibrary& lib);   // Sm3Interpolator2Dir.cpp (+ _SlowTask)
+void registerSm3XInterpolatorNatives(MotionLibrary& lib);   // Sm3XInterpolator.cpp
 void registerSm3ControlAxisNatives(MotionLibrary& lib);   // Sm3ControlAxisByPos.cpp (SMC_ControlAxisByPos)
 void registerSm3PreprocessNatives(MotionLibrary& lib);   // Sm3Preprocess.cpp (SMC_SmoothPath, SMC_CheckVelocities, ...)
 void registerSm3ToolCorrNatives(MotionLibrary& lib);   // Sm3ToolCorr.cpp (SMC_ToolCorr, SMC_AvoidLoop)

@@ -7,16 +7,13 @@
 
 #include "stdlib-motion/cnc/Interpolator.h"
 #include "stdlib-motion/codesys_sm3/Sm3Face.h"
-#include "stdlib-motion/codesys_sm3/Sm3GeoInfo.h"
-#include "stdlib-motion/codesys_sm3/Sm3Queue.h"
+#include "stdlib-motion/codesys_sm3/Sm3IpoCommon.h"
 
 using namespace stc::motion;
 using namespace stc::motion::sm3face;
 
 namespace {
 
-constexpr int16_t kNoOutQueue = 1501;     // SMC_NO_OUTQUEUE_TYPE: no queue, or not one
-constexpr int16_t kQueueChanged = 1801;   // SMC_SA_QUEUE_CHANGED_DURING_OP
 constexpr uint32_t kMaxIpoTimeUs = 1000000;
 
 struct IpoState : MotionSession::InstanceState {
@@ -35,35 +32,6 @@ void clearFlags(sm3::SMC_Interpolator* self) {
 void dropState(MotionSession& s, sm3::SMC_Interpolator* self) {
   if (s.instanceState<IpoState>(self->__handle, self)) s.instanceStates.erase(self->__handle);
   self->__handle = 0;
-}
-
-void publish(sm3::SMC_Interpolator* self, const IpoState& st, const stc::cnc::IpoOutput& o) {
-  sm3::SMC_POSINFO& p = self->piSetPosition;
-  p.dX = o.pos[stc::cnc::AxX];
-  p.dY = o.pos[stc::cnc::AxY];
-  p.dZ = o.pos[stc::cnc::AxZ];
-  p.dA = o.pos[stc::cnc::AxA];
-  p.dB = o.pos[stc::cnc::AxB];
-  p.dC = o.pos[stc::cnc::AxC];
-  p.dA1 = o.pos[stc::cnc::AxP];
-  p.dA2 = o.pos[stc::cnc::AxQ];
-  p.dA3 = o.pos[stc::cnc::AxU];
-  p.dA4 = o.pos[stc::cnc::AxV];
-  p.dA5 = o.pos[stc::cnc::AxW];
-  p.dA6 = 0;
-  self->iStatus = static_cast<int16_t>(o.status);
-  self->bWorking = o.working;
-  self->iActObjectSourceNo = static_cast<int16_t>(std::min<int32_t>(o.sourceLine, INT16_MAX));
-  self->dVel = o.vel;
-  self->vecActTangent.dX = o.tangent[0];
-  self->vecActTangent.dY = o.tangent[1];
-  self->vecActTangent.dZ = o.tangent[2];
-  self->iLastSwitch = o.lastSwitch;
-  self->dwSwitches = o.switches;
-  self->dWayPos = st.wayBase + o.wayPos;
-  self->wM = o.m;
-  self->__mK = o.mK;
-  self->__mL = o.mL;
 }
 
 void startRun(sm3::SMC_Interpolator* self, MotionSession& s) {
@@ -123,28 +91,13 @@ void SMC_Interpolator(sm3::SMC_Interpolator* self) {
   if (!self->bExecute) st->stopping = true;
 
   stc::cnc::Interpolator& ipo = *st->ipo;
-  auto* q = static_cast<sm3::SMC_OUTQUEUE*>(self->poqDataIn);
   QueueView v;
-  const QueueCheck qc = openQueue(s, q, v);
-  int16_t queueError = 0;
-  if (q != st->queue) queueError = kQueueChanged;
-  else if (qc != QueueCheck::Ok) queueError = qc == QueueCheck::Broken ? kQueueChanged : kNoOutQueue;
-  else if (st->fed > v.size()) queueError = kQueueChanged;   // a consumer took elements it does not own
+  int16_t queueError = openRunQueue(s, self->poqDataIn, st->queue, st->fed, v);
+  const sm3::SMC_OUTQUEUE* q = st->queue;
 
   if (queueError == 0 && ipo.error() == 0 && !st->stopping) {
     if (st->fed < v.size() && q->byGenerator != kGenCheckVelocities) queueError = stc::cnc::kIpoNoCheckVelocities;
-    while (queueError == 0 && st->fed < v.size() && ipo.wantsMore()) {
-      const sm3::SMC_GEOINFO& g = v.at(st->fed);
-      if (!(g.wIntMark & stc::cnc::MarkVelChecked)) break;   // not final yet
-      stc::cnc::Element e;
-      if (!fromGeoInfo(g, e)) {
-        queueError = stc::cnc::kIpoPathExceeded;
-        break;
-      }
-      if (ipo.feed(e) != 0) break;
-      ++st->fed;
-    }
-    if (queueError == 0 && q->bEndOfList && st->fed == v.size()) ipo.endOfList();
+    if (queueError == 0) queueError = feedFromQueue(v, st->fed, ipo, true);
   }
 
   stc::cnc::IpoControls c;
@@ -164,7 +117,9 @@ void SMC_Interpolator(sm3::SMC_Interpolator* self) {
       --st->fed;
     }
   }
-  publish(self, *st, o);
+  publishIpoOutputs(self, st->wayBase, o);
+  self->__mK = o.mK;
+  self->__mL = o.mL;
 
   const int16_t err = queueError != 0 ? queueError : ipo.error();
   if (err != 0) {

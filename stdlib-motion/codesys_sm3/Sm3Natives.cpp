@@ -232,6 +232,8 @@ void registerSm3Natives(MotionLibrary& lib) {
   registerSm3FileNatives(lib);
   registerSm3NcNatives(lib);
   registerSm3InterpolatorNatives(lib);
+  registerSm3Interpolator2DirNatives(lib);
+  registerSm3XInterpolatorNatives(lib);
   registerSm3ControlAxisNatives(lib);
   registerSm3PreprocessNatives(lib);
   registerSm3ToolCorrNatives(lib);

@@ -1,0 +1,173 @@
+// SMC_Interpolator2Dir and SMC_Interpolator2Dir_SlowTask (sm3_cnc_interpolator.st;
+// docs/cnc.md, "SMC_Interpolator2Dir"): the checked queue of a program run forwards or
+// backwards by stdlib-motion/cnc's Interpolator2Dir.  The fast block only reads the
+// queue; the slow-task block removes what the interpolator no longer keeps.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "stdlib-motion/cnc/Interpolator2Dir.h"
+#include "stdlib-motion/codesys_sm3/Sm3Face.h"
+#include "stdlib-motion/codesys_sm3/Sm3IpoCommon.h"
+
+using namespace stc::motion;
+using namespace stc::motion::sm3face;
+
+namespace {
+
+constexpr int16_t kBufferTooSmall = 1050;   // SMC_INT2DIR_BUFFER_TOO_SMALL
+constexpr uint32_t kMaxIpoTimeUs = 1000000;
+constexpr uint32_t kMinReserved = 3;        // SMC_MIN_RESERVED_QUEUE_ELEMS
+
+struct Ipo2State : MotionSession::InstanceState {
+  std::unique_ptr<stc::cnc::Interpolator2Dir> ipo;
+  sm3::SMC_OUTQUEUE* queue = nullptr;
+  uint32_t fed = 0;        // queue elements (from nReadPos) handed to the interpolator
+  uint32_t released = 0;   // of those, released by it: the slow task removes them
+  double wayBase = 0;
+  bool stopping = false;
+};
+
+// Reserved entries in force for q, and whether the queue has room for them and a look-ahead.
+uint32_t reservedOf(const sm3::SMC_OUTQUEUE& q) { return std::max(q.nNumReservedEntries, kMinReserved); }
+bool roomForReserved(const sm3::SMC_OUTQUEUE& q) { return uint64_t(q.nCapacity) >= uint64_t(reservedOf(q)) + 2; }
+
+void clearFlags(sm3::SMC_Interpolator2Dir* self) {
+  self->bDone = self->bBusy = self->bError = false;
+  self->wErrorID = 0;
+}
+
+void dropState(MotionSession& s, sm3::SMC_Interpolator2Dir* self) {
+  if (s.instanceState<Ipo2State>(self->__handle, self)) s.instanceStates.erase(self->__handle);
+  self->__handle = 0;
+}
+
+void startRun(sm3::SMC_Interpolator2Dir* self, MotionSession& s) {
+  auto fail = [&](int16_t e) {
+    self->bError = true;
+    self->wErrorID = e;
+  };
+  if (!s.inImage(self, sizeof *self)) return fail(kNoOutQueue);
+  QueueView v;
+  if (openQueue(s, static_cast<sm3::SMC_OUTQUEUE*>(self->poqDataIn), v) != QueueCheck::Ok) return fail(kNoOutQueue);
+  if (self->dwIpoTime == 0 || self->dwIpoTime > kMaxIpoTimeUs) return fail(stc::cnc::kIpoIpoTimeZero);
+  if (!std::isfinite(self->dLastWayPos) || std::fabs(self->dLastWayPos) > 1e15) return fail(stc::cnc::kIpoInvalidParameter);
+  const sm3::SMC_OUTQUEUE& q = *v.queue();
+  if (!roomForReserved(q)) return fail(kBufferTooSmall);
+  stc::cnc::Ipo2DirSettings cfg;
+  cfg.ipo.cycle = self->dwIpoTime * 1e-6;
+  cfg.ipo.mode = static_cast<stc::cnc::VelMode>(self->iVelMode);
+  cfg.ipo.jerk = self->dJerkMax;
+  cfg.history = static_cast<int>(std::min<uint32_t>(reservedOf(q) - kMinReserved, stc::cnc::Interpolator2Dir::kMaxHistory + 1));
+  cfg.startAtEnd = self->bStartAtEnd;
+  cfg.pathCapacity = static_cast<int>(std::min<uint32_t>(q.nCapacity, stc::cnc::Interpolator2Dir::kMaxPath + 1));
+  int16_t err = 0;
+  auto ipo = std::make_unique<stc::cnc::Interpolator2Dir>(cfg, err);
+  if (err != 0) return fail(err);
+  auto owned = std::make_unique<Ipo2State>();
+  owned->owner = self;
+  owned->ipo = std::move(ipo);
+  owned->queue = v.queue();
+  owned->wayBase = self->dLastWayPos;
+  const uint64_t id = s.nextInstanceState++;
+  s.instanceStates[id] = std::move(owned);
+  self->__handle = id;
+  self->bBusy = true;
+  self->iLastSwitch = 0;
+  self->dwSwitches = 0;
+  self->wM = 0;
+}
+
+void SMC_Interpolator2Dir(sm3::SMC_Interpolator2Dir* self) {
+  MotionSession& s = MotionSession::current();
+  const bool edge = self->bExecute && !self->__prev;
+  self->__prev = self->bExecute;
+  Ipo2State* st = s.instanceState<Ipo2State>(self->__handle, self);
+  if (self->bAbort) {   // abandon the path where it stands
+    if (st) dropState(s, self);
+    clearFlags(self);
+    self->bWorking = false;
+    self->dVel = 0;
+    self->eDirection = 0;
+    self->iStatus = static_cast<int16_t>(stc::cnc::IpoStatus::Unknown);
+    return;
+  }
+  if (edge) {
+    if (st) dropState(s, self);
+    clearFlags(self);
+    startRun(self, s);
+    st = s.instanceState<Ipo2State>(self->__handle, self);
+  }
+  if (!st) {
+    if (!self->bExecute) clearFlags(self);
+    return;
+  }
+  if (!self->bExecute) st->stopping = true;
+
+  stc::cnc::Interpolator2Dir& ipo = *st->ipo;
+  QueueView v;
+  int16_t queueError = openRunQueue(s, self->poqDataIn, st->queue, st->fed, v);
+  if (queueError == 0 && ipo.error() == 0 && !st->stopping) {
+    if (st->fed < v.size() && st->queue->byGenerator != kGenCheckVelocities) queueError = stc::cnc::kIpoNoCheckVelocities;
+    if (queueError == 0) queueError = feedFromQueue(v, st->fed, ipo, true);
+  }
+
+  stc::cnc::IpoControls c;
+  c.slowStop = self->bSlow_Stop || st->stopping || queueError != 0;
+  c.quickStop = self->bQuick_Stop;
+  c.emergencyStop = self->bEmergency_Stop;
+  c.waitAtNextStop = self->bWaitAtNextStop;
+  c.singleStep = self->bSingleStep;
+  c.acknM = self->bAcknM;
+  c.override = self->dOverride;
+  c.quickDecel = self->dQuickDeceleration;
+  const stc::cnc::IpoOutput& o = ipo.step(c);
+  st->released += static_cast<uint32_t>(ipo.takeReleased());
+  publishIpoOutputs(self, st->wayBase, o);
+  self->eDirection = static_cast<int32_t>(ipo.direction());
+
+  const int16_t err = queueError != 0 ? queueError : ipo.error();
+  if (err != 0) {
+    self->bError = true;
+    self->wErrorID = err;
+    self->bBusy = false;
+  } else {
+    self->wErrorID = ipo.warning();   // SMC_INT_DATA_UNDERRUN: queue dry forwards, history used up backwards
+    self->bDone = o.finished;
+    self->bBusy = !o.finished;
+  }
+  if (st->stopping && o.vel == 0) {   // bExecute FALSE: dropped once at rest
+    dropState(s, self);
+    clearFlags(self);
+    self->bWorking = false;
+    self->eDirection = 0;
+  }
+}
+
+void SMC_Interpolator2Dir_SlowTask(sm3::SMC_Interpolator2Dir_SlowTask* self) {
+  MotionSession& s = MotionSession::current();
+  self->bError = false;
+  self->wErrorID = 0;
+  sm3::SMC_Interpolator2Dir* ipo = self->Interpolator2Dir;
+  Ipo2State* st = ipo ? s.instanceState<Ipo2State>(ipo->__handle, ipo) : nullptr;
+  if (!st) return;   // no run: nothing to remove
+  QueueView v;
+  if (openRunQueue(s, ipo->poqDataIn, st->queue, st->fed, v) != 0) return;   // the interpolator reports it
+  if (!roomForReserved(*v.queue())) {
+    self->bError = true;
+    self->wErrorID = kBufferTooSmall;
+  }
+  const uint32_t n = std::min({st->released, st->fed, v.size()});
+  for (uint32_t i = 0; i < n; ++i) v.pop();
+  st->fed -= n;
+  st->released -= n;
+}
+
+}  // namespace
+
+namespace stc::motion::sm3face {
+void registerSm3Interpolator2DirNatives(MotionLibrary& lib) {
+  STC_SM3_NATIVE(SMC_Interpolator2Dir, SMC_Interpolator2Dir)
+  STC_SM3_NATIVE(SMC_Interpolator2Dir_SlowTask, SMC_Interpolator2Dir_SlowTask)
+}
+}  // namespace stc::motion::sm3face

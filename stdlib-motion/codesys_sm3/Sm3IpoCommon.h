@@ -1,0 +1,78 @@
+// What the interpolator blocks of the SoftMotion face share (Sm3Interpolator.cpp,
+// Sm3Interpolator2Dir.cpp, Sm3XInterpolator.cpp): their outputs from a core's
+// IpoOutput, and handing checked queue elements to a core.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+#include "stdlib-motion/cnc/Interpolator.h"
+#include "stdlib-motion/codesys_sm3/Sm3GeoInfo.h"
+#include "stdlib-motion/codesys_sm3/Sm3Queue.h"
+
+namespace stc::motion::sm3face {
+
+// piSetPosition (all 11 axes), iStatus, bWorking, iActObjectSourceNo, vecActTangent,
+// iLastSwitch, dwSwitches, dWayPos and, where the block has them, dVel and wM.
+template <class T>
+void publishIpoOutputs(T* self, double wayBase, const cnc::IpoOutput& o) {
+  sm3::SMC_POSINFO& p = self->piSetPosition;
+  p.dX = o.pos[cnc::AxX];
+  p.dY = o.pos[cnc::AxY];
+  p.dZ = o.pos[cnc::AxZ];
+  p.dA = o.pos[cnc::AxA];
+  p.dB = o.pos[cnc::AxB];
+  p.dC = o.pos[cnc::AxC];
+  p.dA1 = o.pos[cnc::AxP];
+  p.dA2 = o.pos[cnc::AxQ];
+  p.dA3 = o.pos[cnc::AxU];
+  p.dA4 = o.pos[cnc::AxV];
+  p.dA5 = o.pos[cnc::AxW];
+  p.dA6 = 0;
+  self->iStatus = static_cast<int16_t>(o.status);
+  self->bWorking = o.working;
+  self->iActObjectSourceNo = static_cast<int16_t>(std::min<int32_t>(o.sourceLine, INT16_MAX));
+  self->vecActTangent.dX = o.tangent[0];
+  self->vecActTangent.dY = o.tangent[1];
+  self->vecActTangent.dZ = o.tangent[2];
+  self->iLastSwitch = o.lastSwitch;
+  self->dwSwitches = o.switches;
+  self->dWayPos = wayBase + o.wayPos;
+  if constexpr (requires { self->dVel; }) self->dVel = o.vel;
+  if constexpr (requires { self->wM; }) self->wM = o.m;
+}
+
+constexpr int16_t kNoOutQueue = 1501;     // SMC_NO_OUTQUEUE_TYPE: no queue, or not one
+constexpr int16_t kQueueChanged = 1801;   // SMC_SA_QUEUE_CHANGED_DURING_OP
+
+// Opens the queue of a running interpolator: 0, or SMC_SA_QUEUE_CHANGED_DURING_OP (1801) when
+// poqDataIn is not the queue of the rising edge any more, is broken, or holds fewer elements
+// than the block has taken from it; SMC_NO_OUTQUEUE_TYPE (1501) when it is no queue now.
+inline int16_t openRunQueue(const MotionSession& s, void* poqDataIn, const sm3::SMC_OUTQUEUE* atEdge, uint32_t fed,
+                            QueueView& v) {
+  auto* q = static_cast<sm3::SMC_OUTQUEUE*>(poqDataIn);
+  const QueueCheck qc = openQueue(s, q, v);
+  if (q != atEdge) return kQueueChanged;
+  if (qc != QueueCheck::Ok) return qc == QueueCheck::Broken ? kQueueChanged : kNoOutQueue;
+  if (fed > v.size()) return kQueueChanged;   // a consumer took elements it does not own
+  return 0;
+}
+
+// Hands the queue's elements from position `fed` on to `ipo` while it wants more; with
+// `checkedOnly` only those SMC_CheckVelocities has finished (wIntMark bit 8).  Returns 0 or
+// SMC_INT_PATH_EXCEEDED (1007) for an element that does not convert.
+template <class Ipo>
+int16_t feedFromQueue(const QueueView& v, uint32_t& fed, Ipo& ipo, bool checkedOnly) {
+  while (fed < v.size() && ipo.wantsMore()) {
+    const sm3::SMC_GEOINFO& g = v.at(fed);
+    if (checkedOnly && !(g.wIntMark & cnc::MarkVelChecked)) break;   // not final yet
+    cnc::Element e;
+    if (!fromGeoInfo(g, e)) return cnc::kIpoPathExceeded;
+    if (ipo.feed(e) != 0) break;
+    ++fed;
+  }
+  if (v.endOfList() && fed == v.size()) ipo.endOfList();
+  return 0;
+}
+
+}  // namespace stc::motion::sm3face
