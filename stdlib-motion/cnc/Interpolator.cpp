@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stdlib-motion/cnc/IpoCommon.h"
 #include "stdlib-motion/cnc/PathSegment.h"
 #include "stdlib-motion/path/Planner.h"
 
@@ -22,17 +23,6 @@ constexpr int kAppendsPerCycle = 4;
 // Set by SMC_PreAcknowledgeM on an M element: the path passes it without stopping.
 constexpr uint16_t kMarkPreAcknowledged = MarkMPreAcknowledged;
 
-bool isStopItem(const Element& e) {
-  if (isMotion(e.type)) return false;
-  return !(e.type == MoveType::MCommand && (e.marks & kMarkPreAcknowledged));
-}
-
-bool finitePos(const Pos& p) {
-  for (double v : p)
-    if (!std::isfinite(v)) return false;
-  return true;
-}
-
 }  // namespace
 
 struct Interpolator::Item {
@@ -40,18 +30,11 @@ struct Interpolator::Item {
   uint32_t moveId = 0;     // planner move (motion items handed over)
   double wayStart = 0, wayEnd = 0;
   bool done = false;
-  uint8_t switchesFired = 0;
-  double switchWay[kMaxSwitches] = {};   // way positions, in firing order
-  int16_t switchCode[kMaxSwitches] = {};
+  SwitchTrack track;                     // H switch points at their way positions
 };
 
 Interpolator::Interpolator(const IpoSettings& settings, int16_t& error) : cfg_(settings) {
-  error = kIpoOk;
-  if (!(std::isfinite(cfg_.cycle) && cfg_.cycle > 0 && cfg_.cycle <= 1.0)) error = kIpoIpoTimeZero;
-  else if (cfg_.mode != VelMode::Trapezoid && cfg_.mode != VelMode::Sigmoid && cfg_.mode != VelMode::Quadratic)
-    error = kIpoInvalidVelMode;
-  else if (cfg_.mode != VelMode::Trapezoid && !(std::isfinite(cfg_.jerk) && cfg_.jerk > 0 && cfg_.jerk <= 1e15))
-    error = kIpoJerkNonPositive;
+  error = checkIpoSettings(cfg_);
   if (error != kIpoOk) {
     error_ = error;
     return;
@@ -75,14 +58,7 @@ bool Interpolator::wantsMore() const { return error_ == kIpoOk && planner_ && co
 int16_t Interpolator::feed(const Element& e) {
   if (!wantsMore()) return error_;
   everFed_ = true;
-  if (isMotion(e.type) || e.type == MoveType::InitPos) {
-    if (!finitePos(e.start) || !finitePos(e.end)) return fail(kIpoPathExceeded), error_;
-  }
-  if (isMotion(e.type)) {
-    if (!(e.vel > 0) || !std::isfinite(e.vel)) return fail(kIpoVelZero), error_;
-    if (!(e.acc > 0 && e.dec > 0) || !std::isfinite(e.acc) || !std::isfinite(e.dec)) return fail(kIpoVelAccDecZero), error_;
-  }
-  if (e.type == MoveType::Dwell && !(std::isfinite(e.dwell) && e.dwell >= 0)) return fail(kIpoPathExceeded), error_;
+  if (const int16_t bad = checkIpoElement(e); bad != kIpoOk) return fail(bad), error_;
   Item& it = at(count_++);
   it = Item{};
   it.e = e;
@@ -140,7 +116,7 @@ void Interpolator::processFront(const IpoControls& c, bool newCycle) {
     Item& it = at(0);
     if (isMotion(it.e.type)) {
       if (!it.done) return;
-    } else if (isStopItem(it.e)) {
+    } else if (isIpoStop(it.e)) {
       if (appended_ > 0 || !planner_->idle() || error_ != kIpoOk) return;
       switch (it.e.type) {
         case MoveType::MCommand:
@@ -192,7 +168,7 @@ void Interpolator::appendRuns(const IpoControls& c) {
   for (int budget = kAppendsPerCycle; appended_ < count_;) {
     Item& it = at(appended_);
     if (!isMotion(it.e.type)) {
-      if (isStopItem(it.e)) return;   // processFront runs it when the path has stopped there
+      if (isIpoStop(it.e)) return;   // processFront runs it when the path has stopped there
       ++appended_;                    // pre-acknowledged M: passed on the fly
       continue;
     }
@@ -223,24 +199,7 @@ void Interpolator::appendRuns(const IpoControls& c) {
     it.wayStart = wayAppended_;
     wayAppended_ += scratch_->length();
     it.wayEnd = wayAppended_;
-    // H switch points in the order the path passes them
-    const double len = it.wayEnd - it.wayStart;
-    int n = 0;
-    for (int k = 0; k < it.e.switchCount && k < kMaxSwitches; ++k) {
-      const SwitchPoint& sp = it.e.switches[k];
-      if (sp.sw == 0) continue;
-      double d = sp.relative ? std::clamp(sp.pos, 0.0, 1.0) * len : sp.pos >= 0 ? std::min(sp.pos, len) : std::max(0.0, len + sp.pos);
-      double w = it.wayStart + d;
-      int j = n++;
-      while (j > 0 && it.switchWay[j - 1] > w) {
-        it.switchWay[j] = it.switchWay[j - 1];
-        it.switchCode[j] = it.switchCode[j - 1];
-        --j;
-      }
-      it.switchWay[j] = w;
-      it.switchCode[j] = sp.sw;
-    }
-    it.e.switchCount = static_cast<uint8_t>(n);   // now: the sorted entries above
+    it.track.place(it.e, it.wayStart, it.wayEnd - it.wayStart);   // H switch points
     prevVelEnd_ = it.e.velEnd;
     ++appended_;
   }
@@ -261,16 +220,7 @@ void Interpolator::fireSwitches(double way) {
     Item& it = at(i);
     if (!isMotion(it.e.type)) continue;
     if (it.wayStart > way + 1e-12 * std::max(1.0, way)) break;
-    while (it.switchesFired < it.e.switchCount &&
-           it.switchWay[it.switchesFired] <= way + 1e-9 * std::max(1.0, std::fabs(way))) {
-      const int16_t sw = it.switchCode[it.switchesFired++];
-      out_.lastSwitch = sw;
-      const int n = sw > 0 ? sw : -sw;
-      if (n >= 1 && n <= 32) {
-        const uint32_t bit = 1u << (n - 1);
-        out_.switches = sw > 0 ? (out_.switches | bit) : (out_.switches & ~bit);
-      }
-    }
+    it.track.forwardTo(way, 1e-9 * std::max(1.0, std::fabs(way)), out_);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stdlib-motion/cnc/IpoCommon.h"
 #include "stdlib-motion/cnc/PathSegment.h"
 #include "stdlib-motion/core/Trajectory.h"
 
@@ -15,17 +16,6 @@ constexpr double kMaxOverride = 2.0;
 constexpr int16_t kBufferTooSmall = 1050;      // SMC_INT2DIR_BUFFER_TOO_SMALL
 constexpr int16_t kPathFitsNotInQueue = 1051;  // SMC_INT2DIR_PATH_FITS_NOT_IN_QUEUE
 
-bool isStopType(const Element& e) {
-  if (isMotion(e.type)) return false;
-  return !(e.type == MoveType::MCommand && (e.marks & MarkMPreAcknowledged));
-}
-
-bool finitePos(const Pos& p) {
-  for (double v : p)
-    if (!std::isfinite(v)) return false;
-  return true;
-}
-
 }  // namespace
 
 struct Interpolator2Dir::Item {
@@ -35,20 +25,13 @@ struct Interpolator2Dir::Item {
   bool hasSeg = false;
   bool stop = false;       // M (not pre-acknowledged), dwell, G92, G75: v = 0 there, served once forwards
   bool served = false;
-  uint8_t nSw = 0, fired = 0;          // switch points (sorted by way) and how many lie behind the set point
-  double swWay[kMaxSwitches] = {};
-  int16_t swCode[kMaxSwitches] = {};
+  SwitchTrack track;
 };
 
 Interpolator2Dir::Interpolator2Dir(const Ipo2DirSettings& settings, int16_t& error) : cfg_(settings) {
-  const IpoSettings& s = cfg_.ipo;
-  error = kIpoOk;
-  if (!(std::isfinite(s.cycle) && s.cycle > 0 && s.cycle <= 1.0)) error = kIpoIpoTimeZero;
-  else if (s.mode != VelMode::Trapezoid && s.mode != VelMode::Sigmoid && s.mode != VelMode::Quadratic)
-    error = kIpoInvalidVelMode;
-  else if (s.mode != VelMode::Trapezoid && !(std::isfinite(s.jerk) && s.jerk > 0 && s.jerk <= 1e15))
-    error = kIpoJerkNonPositive;
-  else if (cfg_.history < 0 || cfg_.history > kMaxHistory || (cfg_.startAtEnd && (cfg_.pathCapacity < 1 || cfg_.pathCapacity > kMaxPath)))
+  error = checkIpoSettings(cfg_.ipo);
+  if (error == kIpoOk && (cfg_.history < 0 || cfg_.history > kMaxHistory ||
+                          (cfg_.startAtEnd && (cfg_.pathCapacity < 1 || cfg_.pathCapacity > kMaxPath))))
     error = kBufferTooSmall;
   if (error != kIpoOk) {
     error_ = error;
@@ -74,20 +57,13 @@ bool Interpolator2Dir::wantsMore() const {
 
 int16_t Interpolator2Dir::feed(const Element& e) {
   if (!wantsMore()) return error_;
-  if (isMotion(e.type) || e.type == MoveType::InitPos) {
-    if (!finitePos(e.start) || !finitePos(e.end)) return fail(kIpoPathExceeded), error_;
-  }
-  if (isMotion(e.type)) {
-    if (!(e.vel > 0) || !std::isfinite(e.vel)) return fail(kIpoVelZero), error_;
-    if (!(e.acc > 0 && e.dec > 0) || !std::isfinite(e.acc) || !std::isfinite(e.dec)) return fail(kIpoVelAccDecZero), error_;
-  }
-  if (e.type == MoveType::Dwell && !(std::isfinite(e.dwell) && e.dwell >= 0)) return fail(kIpoPathExceeded), error_;
+  if (const int16_t bad = checkIpoElement(e); bad != kIpoOk) return fail(bad), error_;
   const int slot = (head_ + count_) % capacity_;
   Item& it = items_[slot];
   it = Item{};
   it.e = e;
   it.motion = isMotion(e.type);
-  it.stop = isStopType(e);
+  it.stop = isIpoStop(e);
   it.wayStart = it.wayEnd = wayFed_;
   if (it.motion) {
     const bool zero = e.start == e.end;
@@ -96,21 +72,7 @@ int16_t Interpolator2Dir::feed(const Element& e) {
       it.hasSeg = true;
       it.wayEnd = wayFed_ + segs_[slot].length();
     }
-    const double len = it.wayEnd - it.wayStart;
-    for (int k = 0; k < e.switchCount && k < kMaxSwitches; ++k) {
-      const SwitchPoint& sp = e.switches[k];
-      if (sp.sw == 0) continue;
-      const double d = sp.relative ? std::clamp(sp.pos, 0.0, 1.0) * len
-                                   : sp.pos >= 0 ? std::min(sp.pos, len) : std::max(0.0, len + sp.pos);
-      int j = it.nSw++;
-      while (j > 0 && it.swWay[j - 1] > it.wayStart + d) {
-        it.swWay[j] = it.swWay[j - 1];
-        it.swCode[j] = it.swCode[j - 1];
-        --j;
-      }
-      it.swWay[j] = it.wayStart + d;
-      it.swCode[j] = sp.sw;
-    }
+    it.track.place(e, it.wayStart, it.wayEnd - it.wayStart);
   }
   wayFed_ = it.wayEnd;
   if (!everFed_) {   // the set point starts at the first element's start
@@ -388,29 +350,7 @@ void Interpolator2Dir::serveStopItem(const IpoControls& c) {
 }
 
 void Interpolator2Dir::fireSwitches(double from, double to) {
-  if (to == from) return;
-  const double tol = 1e-9 * std::max(1.0, std::fabs(to));
-  auto apply = [&](int16_t sw) {
-    out_.lastSwitch = sw;
-    const int k = sw > 0 ? sw : -sw;
-    if (k >= 1 && k <= 32) {
-      const uint32_t bit = 1u << (k - 1);
-      out_.switches = sw > 0 ? (out_.switches | bit) : (out_.switches & ~bit);
-    }
-  };
-  if (to > from) {
-    for (int i = 0; i < count_; ++i) {
-      Item& it = at(i);
-      if (it.wayStart > to + tol) break;
-      while (it.fired < it.nSw && it.swWay[it.fired] <= to + tol) apply(it.swCode[it.fired++]);
-    }
-  } else {
-    for (int i = count_ - 1; i >= 0; --i) {
-      Item& it = at(i);
-      if (it.wayEnd < to - tol) break;
-      while (it.fired > 0 && it.swWay[it.fired - 1] > to + tol) apply(static_cast<int16_t>(-it.swCode[--it.fired]));
-    }
-  }
+  moveSwitches(count_, [this](int i) -> Item& { return at(i); }, from, to, out_);
 }
 
 // Drops items that are no longer needed for going back: more than `history` behind the
@@ -439,12 +379,7 @@ void Interpolator2Dir::startAtEndIfReady() {
   for (int i = 0; i < count_; ++i) {
     Item& it = at(i);
     it.served = true;   // the set point starts behind every stop item
-    for (; it.fired < it.nSw; ++it.fired) {
-      const int16_t sw = it.swCode[it.fired];
-      out_.lastSwitch = sw;
-      const int k = sw > 0 ? sw : -sw;
-      if (k >= 1 && k <= 32) out_.switches = sw > 0 ? (out_.switches | (1u << (k - 1))) : (out_.switches & ~(1u << (k - 1)));
-    }
+    it.track.forwardTo(it.wayEnd, 0, out_);
   }
   leftStart_ = true;
 }

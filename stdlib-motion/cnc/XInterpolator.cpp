@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stdlib-motion/cnc/IpoCommon.h"
 #include "stdlib-motion/cnc/PathSegment.h"
 
 namespace stc::cnc {
@@ -12,12 +13,6 @@ namespace {
 
 constexpr int kMonotonicSamples = 64;   // dX/ds checked at this many points per element
 
-bool finitePos(const Pos& p) {
-  for (double v : p)
-    if (!std::isfinite(v)) return false;
-  return true;
-}
-
 }  // namespace
 
 struct XInterpolator::Item {
@@ -25,9 +20,7 @@ struct XInterpolator::Item {
   bool hasSeg = false;       // a motion element of non-zero length
   double xs = 0, xe = 0;     // dir x X at the start / end
   double wayStart = 0, wayEnd = 0;
-  uint8_t nSw = 0, fired = 0;
-  double swWay[kMaxSwitches] = {};
-  int16_t swCode[kMaxSwitches] = {};
+  SwitchTrack track;
 };
 
 XInterpolator::XInterpolator(int dir) : dir_(dir) {
@@ -70,21 +63,7 @@ int16_t XInterpolator::feed(const Element& e) {
       seg.eval(seg.length() * k / kMonotonicSamples, pp);
       if (dir_ * pp.d1[AxX] < -1e-9) return error_ = kXIpoNoIntersection;
     }
-    const double len = it.wayEnd - it.wayStart;
-    for (int k = 0; k < e.switchCount && k < kMaxSwitches; ++k) {
-      const SwitchPoint& sp = e.switches[k];
-      if (sp.sw == 0) continue;
-      const double d = sp.relative ? std::clamp(sp.pos, 0.0, 1.0) * len
-                                   : sp.pos >= 0 ? std::min(sp.pos, len) : std::max(0.0, len + sp.pos);
-      int j = it.nSw++;
-      while (j > 0 && it.swWay[j - 1] > it.wayStart + d) {
-        it.swWay[j] = it.swWay[j - 1];
-        it.swCode[j] = it.swCode[j - 1];
-        --j;
-      }
-      it.swWay[j] = it.wayStart + d;
-      it.swCode[j] = sp.sw;
-    }
+    it.track.place(e, it.wayStart, it.wayEnd - it.wayStart);
   }
   wayFed_ = it.wayEnd;
   if (!everFed_) {
@@ -111,29 +90,14 @@ double XInterpolator::solve(const Item& it, int slot, double nx) const {
 }
 
 void XInterpolator::fireSwitches(double from, double to) {
-  if (to == from) return;
-  const double tol = 1e-9 * std::max(1.0, std::fabs(to));
-  auto apply = [&](int16_t sw) {
-    out_.lastSwitch = sw;
-    const int k = sw > 0 ? sw : -sw;
-    if (k >= 1 && k <= 32) {
-      const uint32_t bit = 1u << (k - 1);
-      out_.switches = sw > 0 ? (out_.switches | bit) : (out_.switches & ~bit);
-    }
-  };
-  if (to > from) {
-    for (int i = 0; i < count_; ++i) {
-      Item& it = at(i);
-      if (it.wayStart > to + tol) break;
-      while (it.fired < it.nSw && it.swWay[it.fired] <= to + tol) apply(it.swCode[it.fired++]);
-    }
-  } else {
-    for (int i = count_ - 1; i >= 0; --i) {
-      Item& it = at(i);
-      if (it.wayEnd < to - tol) break;
-      while (it.fired > 0 && it.swWay[it.fired - 1] > to + tol) apply(static_cast<int16_t>(-it.swCode[--it.fired]));
-    }
-  }
+  moveSwitches(count_, [this](int i) -> Item& { return at(i); }, from, to, out_);
+}
+
+// The unit tangent of the path (X/Y/Z) at a point of a segment; kept when it has none.
+void XInterpolator::setTangent(const path::PathPoint& pp) {
+  const double n = std::sqrt(pp.d1[0] * pp.d1[0] + pp.d1[1] * pp.d1[1] + pp.d1[2] * pp.d1[2]);
+  if (n > 0)
+    for (int i = 0; i < 3; ++i) out_.tangent[i] = pp.d1[i] / n;
 }
 
 const IpoOutput& XInterpolator::step(double x) {
@@ -212,9 +176,7 @@ const IpoOutput& XInterpolator::step(double x) {
     if (!(atEnd && endOfList_) && nx <= it.xe + tol) out_.pos[AxX] = x;   // X exactly as given
     path::PathPoint pp;
     segs_[slot].eval(segs_[slot].length(), pp);
-    const double n = std::sqrt(pp.d1[0] * pp.d1[0] + pp.d1[1] * pp.d1[1] + pp.d1[2] * pp.d1[2]);
-    if (n > 0)
-      for (int i = 0; i < 3; ++i) out_.tangent[i] = pp.d1[i] / n;
+    setTangent(pp);
   } else {
     const double s = solve(it, slot, nx);
     path::PathPoint pp;
@@ -222,9 +184,7 @@ const IpoOutput& XInterpolator::step(double x) {
     for (int i = 0; i < kPathDims; ++i) out_.pos[i] = pp.pos[i];
     out_.pos[AxX] = x;
     way_ = it.wayStart + s;
-    const double n = std::sqrt(pp.d1[0] * pp.d1[0] + pp.d1[1] * pp.d1[1] + pp.d1[2] * pp.d1[2]);
-    if (n > 0)
-      for (int i = 0; i < 3; ++i) out_.tangent[i] = pp.d1[i] / n;
+    setTangent(pp);
   }
   fireSwitches(before, way_);
   out_.wayPos = way_;

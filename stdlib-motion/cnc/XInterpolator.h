@@ -18,6 +18,7 @@
 #include <memory>
 
 #include "stdlib-motion/cnc/Interpolator.h"
+#include "stdlib-motion/path/Geometry.h"
 
 namespace stc::cnc {
 
@@ -60,6 +61,7 @@ private:
   const Item& at(int i) const;
   double solve(const Item& it, int slot, double x) const;
   void fireSwitches(double from, double to);
+  void setTangent(const path::PathPoint& pp);
 
   int dir_;
   std::unique_ptr<Item[]> items_;

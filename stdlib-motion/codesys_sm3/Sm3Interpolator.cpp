@@ -14,7 +14,6 @@ using namespace stc::motion::sm3face;
 
 namespace {
 
-constexpr uint32_t kMaxIpoTimeUs = 1000000;
 
 struct IpoState : MotionSession::InstanceState {
   std::unique_ptr<stc::cnc::Interpolator> ipo;
@@ -24,26 +23,13 @@ struct IpoState : MotionSession::InstanceState {
   bool stopping = false;     // bExecute fell: stop along the path, then drop the run
 };
 
-void clearFlags(sm3::SMC_Interpolator* self) {
-  self->bDone = self->bBusy = self->bError = false;
-  self->wErrorID = 0;
-}
-
-void dropState(MotionSession& s, sm3::SMC_Interpolator* self) {
-  if (s.instanceState<IpoState>(self->__handle, self)) s.instanceStates.erase(self->__handle);
-  self->__handle = 0;
-}
-
 void startRun(sm3::SMC_Interpolator* self, MotionSession& s) {
   auto fail = [&](int16_t e) {
     self->bError = true;
     self->wErrorID = e;
   };
-  if (!s.inImage(self, sizeof *self)) return fail(kNoOutQueue);
   QueueView v;
-  if (openQueue(s, static_cast<sm3::SMC_OUTQUEUE*>(self->poqDataIn), v) != QueueCheck::Ok) return fail(kNoOutQueue);
-  if (self->dwIpoTime == 0 || self->dwIpoTime > kMaxIpoTimeUs) return fail(stc::cnc::kIpoIpoTimeZero);
-  if (!std::isfinite(self->dLastWayPos) || std::fabs(self->dLastWayPos) > 1e15) return fail(stc::cnc::kIpoInvalidParameter);
+  if (const int16_t e = checkRunStart(s, self, v)) return fail(e);
   stc::cnc::IpoSettings cfg;
   cfg.cycle = self->dwIpoTime * 1e-6;
   cfg.mode = static_cast<stc::cnc::VelMode>(self->iVelMode);
@@ -52,17 +38,10 @@ void startRun(sm3::SMC_Interpolator* self, MotionSession& s) {
   auto ipo = std::make_unique<stc::cnc::Interpolator>(cfg, err);
   if (err != 0) return fail(err);
   auto owned = std::make_unique<IpoState>();
-  owned->owner = self;
   owned->ipo = std::move(ipo);
   owned->queue = v.queue();
   owned->wayBase = self->dLastWayPos;
-  const uint64_t id = s.nextInstanceState++;
-  s.instanceStates[id] = std::move(owned);
-  self->__handle = id;
-  self->bBusy = true;
-  self->iLastSwitch = 0;
-  self->dwSwitches = 0;
-  self->wM = 0;
+  installRunState(s, self, std::move(owned));
 }
 
 void SMC_Interpolator(sm3::SMC_Interpolator* self) {
@@ -71,21 +50,21 @@ void SMC_Interpolator(sm3::SMC_Interpolator* self) {
   self->__prev = self->bExecute;
   IpoState* st = s.instanceState<IpoState>(self->__handle, self);
   if (self->bAbort) {   // abandon the path where it stands (no ramp: after an emergency stop)
-    if (st) dropState(s, self);
-    clearFlags(self);
+    if (st) dropRunState<IpoState>(s, self);
+    clearRunFlags(self);
     self->bWorking = false;
     self->dVel = 0;
     self->iStatus = static_cast<int16_t>(stc::cnc::IpoStatus::Unknown);
     return;
   }
   if (edge) {
-    if (st) dropState(s, self);
-    clearFlags(self);
+    if (st) dropRunState<IpoState>(s, self);
+    clearRunFlags(self);
     startRun(self, s);
     st = s.instanceState<IpoState>(self->__handle, self);
   }
   if (!st) {
-    if (!self->bExecute) clearFlags(self);
+    if (!self->bExecute) clearRunFlags(self);
     return;
   }
   if (!self->bExecute) st->stopping = true;
@@ -100,15 +79,7 @@ void SMC_Interpolator(sm3::SMC_Interpolator* self) {
     if (queueError == 0) queueError = feedFromQueue(v, st->fed, ipo, true);
   }
 
-  stc::cnc::IpoControls c;
-  c.slowStop = self->bSlow_Stop || st->stopping || queueError != 0;
-  c.quickStop = self->bQuick_Stop;
-  c.emergencyStop = self->bEmergency_Stop;
-  c.waitAtNextStop = self->bWaitAtNextStop;
-  c.singleStep = self->bSingleStep;
-  c.acknM = self->bAcknM;
-  c.override = self->dOverride;
-  c.quickDecel = self->dQuickDeceleration;
+  const stc::cnc::IpoControls c = ipoControls(self, st->stopping || queueError != 0);
   const stc::cnc::IpoOutput& o = ipo.step(c);
   if (queueError == 0) {
     const int done = ipo.takeFinished();
@@ -132,8 +103,8 @@ void SMC_Interpolator(sm3::SMC_Interpolator* self) {
     self->bBusy = !o.finished;
   }
   if (st->stopping && o.vel == 0) {   // bExecute FALSE: dropped once at rest
-    dropState(s, self);
-    clearFlags(self);
+    dropRunState<IpoState>(s, self);
+    clearRunFlags(self);
     self->bWorking = false;
   }
 }

@@ -16,7 +16,6 @@ using namespace stc::motion::sm3face;
 namespace {
 
 constexpr int16_t kBufferTooSmall = 1050;   // SMC_INT2DIR_BUFFER_TOO_SMALL
-constexpr uint32_t kMaxIpoTimeUs = 1000000;
 constexpr uint32_t kMinReserved = 3;        // SMC_MIN_RESERVED_QUEUE_ELEMS
 
 struct Ipo2State : MotionSession::InstanceState {
@@ -32,26 +31,13 @@ struct Ipo2State : MotionSession::InstanceState {
 uint32_t reservedOf(const sm3::SMC_OUTQUEUE& q) { return std::max(q.nNumReservedEntries, kMinReserved); }
 bool roomForReserved(const sm3::SMC_OUTQUEUE& q) { return uint64_t(q.nCapacity) >= uint64_t(reservedOf(q)) + 2; }
 
-void clearFlags(sm3::SMC_Interpolator2Dir* self) {
-  self->bDone = self->bBusy = self->bError = false;
-  self->wErrorID = 0;
-}
-
-void dropState(MotionSession& s, sm3::SMC_Interpolator2Dir* self) {
-  if (s.instanceState<Ipo2State>(self->__handle, self)) s.instanceStates.erase(self->__handle);
-  self->__handle = 0;
-}
-
 void startRun(sm3::SMC_Interpolator2Dir* self, MotionSession& s) {
   auto fail = [&](int16_t e) {
     self->bError = true;
     self->wErrorID = e;
   };
-  if (!s.inImage(self, sizeof *self)) return fail(kNoOutQueue);
   QueueView v;
-  if (openQueue(s, static_cast<sm3::SMC_OUTQUEUE*>(self->poqDataIn), v) != QueueCheck::Ok) return fail(kNoOutQueue);
-  if (self->dwIpoTime == 0 || self->dwIpoTime > kMaxIpoTimeUs) return fail(stc::cnc::kIpoIpoTimeZero);
-  if (!std::isfinite(self->dLastWayPos) || std::fabs(self->dLastWayPos) > 1e15) return fail(stc::cnc::kIpoInvalidParameter);
+  if (const int16_t e = checkRunStart(s, self, v)) return fail(e);
   const sm3::SMC_OUTQUEUE& q = *v.queue();
   if (!roomForReserved(q)) return fail(kBufferTooSmall);
   stc::cnc::Ipo2DirSettings cfg;
@@ -65,17 +51,10 @@ void startRun(sm3::SMC_Interpolator2Dir* self, MotionSession& s) {
   auto ipo = std::make_unique<stc::cnc::Interpolator2Dir>(cfg, err);
   if (err != 0) return fail(err);
   auto owned = std::make_unique<Ipo2State>();
-  owned->owner = self;
   owned->ipo = std::move(ipo);
   owned->queue = v.queue();
   owned->wayBase = self->dLastWayPos;
-  const uint64_t id = s.nextInstanceState++;
-  s.instanceStates[id] = std::move(owned);
-  self->__handle = id;
-  self->bBusy = true;
-  self->iLastSwitch = 0;
-  self->dwSwitches = 0;
-  self->wM = 0;
+  installRunState(s, self, std::move(owned));
 }
 
 void SMC_Interpolator2Dir(sm3::SMC_Interpolator2Dir* self) {
@@ -84,8 +63,8 @@ void SMC_Interpolator2Dir(sm3::SMC_Interpolator2Dir* self) {
   self->__prev = self->bExecute;
   Ipo2State* st = s.instanceState<Ipo2State>(self->__handle, self);
   if (self->bAbort) {   // abandon the path where it stands
-    if (st) dropState(s, self);
-    clearFlags(self);
+    if (st) dropRunState<Ipo2State>(s, self);
+    clearRunFlags(self);
     self->bWorking = false;
     self->dVel = 0;
     self->eDirection = 0;
@@ -93,13 +72,13 @@ void SMC_Interpolator2Dir(sm3::SMC_Interpolator2Dir* self) {
     return;
   }
   if (edge) {
-    if (st) dropState(s, self);
-    clearFlags(self);
+    if (st) dropRunState<Ipo2State>(s, self);
+    clearRunFlags(self);
     startRun(self, s);
     st = s.instanceState<Ipo2State>(self->__handle, self);
   }
   if (!st) {
-    if (!self->bExecute) clearFlags(self);
+    if (!self->bExecute) clearRunFlags(self);
     return;
   }
   if (!self->bExecute) st->stopping = true;
@@ -112,15 +91,7 @@ void SMC_Interpolator2Dir(sm3::SMC_Interpolator2Dir* self) {
     if (queueError == 0) queueError = feedFromQueue(v, st->fed, ipo, true);
   }
 
-  stc::cnc::IpoControls c;
-  c.slowStop = self->bSlow_Stop || st->stopping || queueError != 0;
-  c.quickStop = self->bQuick_Stop;
-  c.emergencyStop = self->bEmergency_Stop;
-  c.waitAtNextStop = self->bWaitAtNextStop;
-  c.singleStep = self->bSingleStep;
-  c.acknM = self->bAcknM;
-  c.override = self->dOverride;
-  c.quickDecel = self->dQuickDeceleration;
+  const stc::cnc::IpoControls c = ipoControls(self, st->stopping || queueError != 0);
   const stc::cnc::IpoOutput& o = ipo.step(c);
   st->released += static_cast<uint32_t>(ipo.takeReleased());
   publishIpoOutputs(self, st->wayBase, o);
@@ -137,8 +108,8 @@ void SMC_Interpolator2Dir(sm3::SMC_Interpolator2Dir* self) {
     self->bBusy = !o.finished;
   }
   if (st->stopping && o.vel == 0) {   // bExecute FALSE: dropped once at rest
-    dropState(s, self);
-    clearFlags(self);
+    dropRunState<Ipo2State>(s, self);
+    clearRunFlags(self);
     self->bWorking = false;
     self->eDirection = 0;
   }

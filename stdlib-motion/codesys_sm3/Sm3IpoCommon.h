@@ -4,9 +4,12 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <memory>
 
 #include "stdlib-motion/cnc/Interpolator.h"
+#include "stdlib-motion/codesys_sm3/Sm3Face.h"
 #include "stdlib-motion/codesys_sm3/Sm3GeoInfo.h"
 #include "stdlib-motion/codesys_sm3/Sm3Queue.h"
 
@@ -56,6 +59,65 @@ inline int16_t openRunQueue(const MotionSession& s, void* poqDataIn, const sm3::
   if (qc != QueueCheck::Ok) return qc == QueueCheck::Broken ? kQueueChanged : kNoOutQueue;
   if (fed > v.size()) return kQueueChanged;   // a consumer took elements it does not own
   return 0;
+}
+
+constexpr uint32_t kMaxIpoTimeUs = 1000000;
+
+template <class T>
+void clearRunFlags(T* self) {
+  self->bDone = self->bBusy = self->bError = false;
+  self->wErrorID = 0;
+}
+
+// Ends the run of an interpolator block: its state leaves the session.
+template <class State, class T>
+void dropRunState(MotionSession& s, T* self) {
+  if (s.instanceState<State>(self->__handle, self)) s.instanceStates.erase(self->__handle);
+  self->__handle = 0;
+}
+
+// The rising-edge checks every interpolator block makes: 0 and `v` the queue, or the error:
+// the instance not in static memory or no queue (1501), dwIpoTime 0 or above 1 s (1009,
+// where the block has it), dLastWayPos not finite or beyond 1e15 (1820).
+template <class T>
+int16_t checkRunStart(const MotionSession& s, T* self, QueueView& v) {
+  if (!s.inImage(self, sizeof *self)) return kNoOutQueue;
+  if (openQueue(s, static_cast<sm3::SMC_OUTQUEUE*>(self->poqDataIn), v) != QueueCheck::Ok) return kNoOutQueue;
+  if constexpr (requires { self->dwIpoTime; })
+    if (self->dwIpoTime == 0 || self->dwIpoTime > kMaxIpoTimeUs) return cnc::kIpoIpoTimeZero;
+  if (!std::isfinite(self->dLastWayPos) || std::fabs(self->dLastWayPos) > 1e15) return cnc::kIpoInvalidParameter;
+  return 0;
+}
+
+// Puts a run's state into the session under a new handle kept by the instance; bBusy rises.
+template <class State, class T>
+State& installRunState(MotionSession& s, T* self, std::unique_ptr<State> owned) {
+  owned->owner = self;
+  State& st = *owned;
+  const uint64_t id = s.nextInstanceState++;
+  s.instanceStates[id] = std::move(owned);
+  self->__handle = id;
+  self->bBusy = true;
+  self->iLastSwitch = 0;
+  self->dwSwitches = 0;
+  if constexpr (requires { self->wM; }) self->wM = 0;
+  return st;
+}
+
+// The per-cycle controls of a time-based interpolator block; `slowStop` adds a stop along
+// the path (bExecute fell, a queue error).
+template <class T>
+cnc::IpoControls ipoControls(const T* self, bool slowStop) {
+  cnc::IpoControls c;
+  c.slowStop = self->bSlow_Stop || slowStop;
+  c.quickStop = self->bQuick_Stop;
+  c.emergencyStop = self->bEmergency_Stop;
+  c.waitAtNextStop = self->bWaitAtNextStop;
+  c.singleStep = self->bSingleStep;
+  c.acknM = self->bAcknM;
+  c.override = self->dOverride;
+  c.quickDecel = self->dQuickDeceleration;
+  return c;
 }
 
 // Hands the queue's elements from position `fed` on to `ipo` while it wants more; with

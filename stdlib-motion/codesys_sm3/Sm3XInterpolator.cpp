@@ -21,37 +21,19 @@ struct XIpoState : MotionSession::InstanceState {
   double wayBase = 0;
 };
 
-void clearFlags(sm3::SMC_XInterpolator* self) {
-  self->bDone = self->bBusy = self->bError = false;
-  self->wErrorID = 0;
-}
-
-void dropState(MotionSession& s, sm3::SMC_XInterpolator* self) {
-  if (s.instanceState<XIpoState>(self->__handle, self)) s.instanceStates.erase(self->__handle);
-  self->__handle = 0;
-}
-
 void startRun(sm3::SMC_XInterpolator* self, MotionSession& s) {
   auto fail = [&](int16_t e) {
     self->bError = true;
     self->wErrorID = e;
   };
-  if (!s.inImage(self, sizeof *self)) return fail(kNoOutQueue);
   QueueView v;
-  if (openQueue(s, static_cast<sm3::SMC_OUTQUEUE*>(self->poqDataIn), v) != QueueCheck::Ok) return fail(kNoOutQueue);
+  if (const int16_t e = checkRunStart(s, self, v)) return fail(e);
   if (self->eDirection != kDirPositive && self->eDirection != kDirNegative) return fail(stc::cnc::kXIpoInvalidDirection);
-  if (!std::isfinite(self->dLastWayPos) || std::fabs(self->dLastWayPos) > 1e15) return fail(stc::cnc::kIpoInvalidParameter);
   auto owned = std::make_unique<XIpoState>();
-  owned->owner = self;
   owned->ipo = std::make_unique<stc::cnc::XInterpolator>(self->eDirection);
   owned->queue = v.queue();
   owned->wayBase = self->dLastWayPos;
-  const uint64_t id = s.nextInstanceState++;
-  s.instanceStates[id] = std::move(owned);
-  self->__handle = id;
-  self->bBusy = true;
-  self->iLastSwitch = 0;
-  self->dwSwitches = 0;
+  installRunState(s, self, std::move(owned));
 }
 
 void SMC_XInterpolator(sm3::SMC_XInterpolator* self) {
@@ -60,15 +42,15 @@ void SMC_XInterpolator(sm3::SMC_XInterpolator* self) {
   self->__prev = self->bExecute;
   XIpoState* st = s.instanceState<XIpoState>(self->__handle, self);
   if (self->bAbort || !self->bExecute) {   // a cam: nothing to brake, the run ends at once
-    if (st) dropState(s, self);
-    clearFlags(self);
+    if (st) dropRunState<XIpoState>(s, self);
+    clearRunFlags(self);
     self->bWorking = false;
     if (self->bAbort) self->iStatus = static_cast<int16_t>(stc::cnc::IpoStatus::Unknown);
     return;
   }
   if (edge) {
-    if (st) dropState(s, self);
-    clearFlags(self);
+    if (st) dropRunState<XIpoState>(s, self);
+    clearRunFlags(self);
     startRun(self, s);
     st = s.instanceState<XIpoState>(self->__handle, self);
   }
@@ -93,7 +75,7 @@ void SMC_XInterpolator(sm3::SMC_XInterpolator* self) {
     self->wErrorID = err;
     self->bBusy = false;
     self->bWorking = false;
-    dropState(s, self);   // stays in error until the next rising edge
+    dropRunState<XIpoState>(s, self);   // stays in error until the next rising edge
     return;
   }
   self->wErrorID = ipo.warning();   // SMC_INT_DATA_UNDERRUN: X beyond what the queue holds yet
