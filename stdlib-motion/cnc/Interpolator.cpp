@@ -120,12 +120,7 @@ void Interpolator::processFront(const IpoControls& c, bool newCycle) {
       if (appended_ > 0 || !planner_->idle() || error_ != kIpoOk) return;
       switch (it.e.type) {
         case MoveType::MCommand:
-          out_.m = it.e.m;
-          out_.mK = it.e.k;
-          out_.mL = it.e.l;
-          if (!c.acknM) return;
-          out_.m = 0;
-          out_.mK = out_.mL = 0;
+          if (!waitOnM(out_, it.e, c.acknM)) return;
           break;
         case MoveType::Dwell:
           // the cycle the previous element ended in does not count (the dwell is never shorter)

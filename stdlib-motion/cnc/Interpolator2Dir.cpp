@@ -25,6 +25,7 @@ struct Interpolator2Dir::Item {
   bool hasSeg = false;
   bool stop = false;       // M (not pre-acknowledged), dwell, G92, G75: v = 0 there, served once forwards
   bool served = false;
+  double curveCap = 1e300;   // sqrt(E / max curvature): the path planner's cap on curves (not scaled by the override)
   SwitchTrack track;
 };
 
@@ -52,6 +53,7 @@ const Interpolator2Dir::Item& Interpolator2Dir::at(int i) const { return items_[
 
 bool Interpolator2Dir::wantsMore() const {
   if (error_ != kIpoOk || !items_ || endOfList_ || count_ >= capacity_) return false;
+  if (fedThisCycle_ >= kFeedsPerCycle) return false;   // spread segment building over cycles
   return cfg_.startAtEnd || count_ - ctl_ - 1 < kLookAhead;
 }
 
@@ -71,10 +73,13 @@ int16_t Interpolator2Dir::feed(const Element& e) {
       if (!buildPathSegment(e, segs_[slot])) return fail(kIpoPathExceeded), error_;
       it.hasSeg = true;
       it.wayEnd = wayFed_ + segs_[slot].length();
+      const double kappa = segs_[slot].maxCurvature();
+      if (kappa > 0) it.curveCap = std::sqrt(e.acc / kappa);
     }
     it.track.place(e, it.wayStart, it.wayEnd - it.wayStart);
   }
   wayFed_ = it.wayEnd;
+  ++fedThisCycle_;
   if (!everFed_) {   // the set point starts at the first element's start
     everFed_ = true;
     out_.pos = e.start;
@@ -105,12 +110,28 @@ int Interpolator2Dir::governing(int dir) const {
   return -1;
 }
 
-// The velocity allowed (before the override) at the end of motion item i: 0 where the
-// path stops (a stop item, the end of what is known, single steps), else the smaller of
-// dVelEnd and the next element's F.
-static double junctionCapOf(const Element& before, const Element* next, bool stopBetween, bool singleStep) {
-  if (singleStep || stopBetween || !next) return 0;
-  return std::min(before.velEnd, next->vel);
+// The velocity allowed at the end of motion item i with override ov: 0 where the path stops
+// (a stop item follows, nothing follows yet, single steps), else the smaller of dVelEnd and
+// the next element's F (x ov) and the curvature caps of both.  *last: nothing but
+// pre-acknowledged M functions follows.
+double Interpolator2Dir::junctionAfter(int i, bool singleStep, double ov, bool* last) const {
+  if (last) *last = false;
+  for (int j = i + 1; j < count_; ++j) {
+    if (at(j).motion) {
+      if (singleStep) return 0;
+      return std::min({std::min(at(i).e.velEnd, at(j).e.vel) * ov, at(i).curveCap, at(j).curveCap});
+    }
+    if (at(j).stop) return 0;
+  }
+  if (last) *last = true;
+  return 0;
+}
+
+// The motion item before item i, or -1.
+int Interpolator2Dir::motionBefore(int i) const {
+  for (int j = i - 1; j >= 0; --j)
+    if (at(j).motion) return j;
+  return -1;
 }
 
 // Fills cons_ with the points ahead (direction dir, up to `horizon`) where |v| is capped,
@@ -136,14 +157,8 @@ int Interpolator2Dir::collectConstraints(int dir, double horizon, double ov, boo
         continue;
       }
       if (!it.motion) continue;
-      const Element* next = nullptr;
-      bool stopBetween = false;
-      for (int j = i + 1; j < count_ && !next; ++j) {
-        if (at(j).motion) next = &at(j).e;
-        else if (at(j).stop) stopBetween = true;
-      }
-      const double cap = junctionCapOf(it.e, next, stopBetween, singleStep) * ov;
-      const bool wall = !next && !stopBetween;   // the last element known
+      bool wall = false;   // the last element known
+      const double cap = junctionAfter(i, singleStep, ov, &wall);
       if (it.wayEnd < w_ - tol) continue;
       if (!push(it.wayEnd - w_, cap, wall)) return n;
     }
@@ -155,13 +170,8 @@ int Interpolator2Dir::collectConstraints(int dir, double horizon, double ov, boo
       if (it.stop && it.wayStart < w_ - tol && !push(w_ - it.wayStart, 0, false)) return n;
       continue;
     }
-    const Element* prev = nullptr;
-    bool stopBetween = false;
-    for (int j = i - 1; j >= 0 && !prev; --j) {
-      if (at(j).motion) prev = &at(j).e;
-      else if (at(j).stop) stopBetween = true;
-    }
-    const double cap = prev ? junctionCapOf(*prev, &it.e, stopBetween, singleStep) * ov : 0;
+    const int p = motionBefore(i);
+    const double cap = p >= 0 ? junctionAfter(p, singleStep, ov, nullptr) : 0;
     const bool wall = i == 0;
     if (it.wayStart > w_ + tol) continue;
     if (!push(w_ - it.wayStart, cap, wall)) return n;
@@ -169,21 +179,18 @@ int Interpolator2Dir::collectConstraints(int dir, double horizon, double ov, boo
   return n;
 }
 
-// TRUE while the set point stands where the path stops anyway (bWaitAtNextStop holds there).
-bool Interpolator2Dir::atStopPoint() const {
+// TRUE while the set point stands where the path stops anyway (bWaitAtNextStop holds there):
+// a stop item, or a junction of the element in control (its start or its end) with velocity 0.
+bool Interpolator2Dir::atStopPoint(bool singleStep) const {
   if (v_ != 0 || count_ == 0) return false;
   const Item& it = at(ctl_);
   if (it.stop) return true;
-  const double tol = 1e-12 * std::max(1.0, std::fabs(w_));
   if (!it.motion) return false;
-  if (std::fabs(w_ - it.wayEnd) <= tol) {
-    const Element* next = nullptr;
-    bool stopBetween = false;
-    for (int j = ctl_ + 1; j < count_ && !next; ++j) {
-      if (at(j).motion) next = &at(j).e;
-      else if (at(j).stop) stopBetween = true;
-    }
-    return junctionCapOf(it.e, next, stopBetween, false) == 0;
+  const double tol = 1e-12 * std::max(1.0, std::fabs(w_));
+  if (std::fabs(w_ - it.wayEnd) <= tol && junctionAfter(ctl_, singleStep, 1, nullptr) == 0) return true;
+  if (std::fabs(w_ - it.wayStart) <= tol) {
+    const int p = motionBefore(ctl_);
+    return p < 0 || junctionAfter(p, singleStep, 1, nullptr) == 0;
   }
   return false;
 }
@@ -204,7 +211,7 @@ void Interpolator2Dir::move(const IpoControls& c) {
     a_ = 0;
     return;
   }
-  const bool holding = v_ == 0 && c.waitAtNextStop && leftStart_ && atStopPoint();
+  const bool holding = v_ == 0 && c.waitAtNextStop && leftStart_ && atStopPoint(c.singleStep);
   const int g = governing(travel);
   if (g < 0 || holding) {   // nothing to run in that direction
     v_ = a_ = 0;
@@ -219,7 +226,7 @@ void Interpolator2Dir::move(const IpoControls& c) {
   const bool quick = c.quickStop && std::isfinite(c.quickDecel) && c.quickDecel > 0 && c.quickDecel <= 1e12;
   if (quick) lim.dec = c.quickDecel;
   const bool wantStop = dirCmd != travel || c.slowStop || quick || error_ != kIpoOk;
-  const double cap = ge.vel * ovMag;
+  const double cap = std::min(ge.vel * ovMag, at(g).curveCap);
   lim.vel = std::max(cap, 1e-12);
   const double target = wantStop ? 0.0 : cap;
 
@@ -326,12 +333,7 @@ void Interpolator2Dir::serveStopItem(const IpoControls& c) {
   }
   switch (it.e.type) {
     case MoveType::MCommand:
-      out_.m = it.e.m;
-      out_.mK = it.e.k;
-      out_.mL = it.e.l;
-      if (!c.acknM) return;
-      out_.m = 0;
-      out_.mK = out_.mL = 0;
+      if (!waitOnM(out_, it.e, c.acknM)) return;
       break;
     case MoveType::Dwell:
       if (!dwellStarted_) {
@@ -343,23 +345,27 @@ void Interpolator2Dir::serveStopItem(const IpoControls& c) {
       if (dwellElapsed_ < it.e.dwell - 1e-9 * cfg_.ipo.cycle) return;
       dwellStarted_ = false;
       break;
-    default: break;   // G92 (the next element starts at the new position), G75: reached
+    case MoveType::InitPos:   // the next element starts at the new position: nothing before it is kept
+      servedG92_ = std::max(servedG92_, ctl_);
+      break;
+    default: break;   // G75: reached
   }
   it.served = true;
   if (ctl_ + 1 < count_) ++ctl_;
 }
 
 void Interpolator2Dir::fireSwitches(double from, double to) {
-  moveSwitches(count_, [this](int i) -> Item& { return at(i); }, from, to, out_);
+  // items before the one in control lie behind `from` with every switch fired (backwards the
+  // scan starts one item ahead: a point within the switch tolerance of the next element)
+  moveSwitches(to > from ? ctl_ : ctl_ + 1, count_, [this](int i) -> Item& { return at(i); }, from, to, out_);
 }
 
 // Drops items that are no longer needed for going back: more than `history` behind the
 // one in control, or before a G92 that has been served (the coordinates changed there).
 void Interpolator2Dir::release() {
   if (cfg_.startAtEnd) return;
-  int barrier = -1;
-  for (int i = 0; i <= ctl_ && i < count_; ++i)
-    if (at(i).e.type == MoveType::InitPos && at(i).served) barrier = i;
+  const int barrier = servedG92_;
+  servedG92_ = -1;
   int drop = std::max(ctl_ - cfg_.history, barrier + 1);
   drop = std::min(drop, ctl_);   // never the item in control
   if (barrier >= 0 && barrier == ctl_) drop = ctl_;
@@ -472,6 +478,7 @@ const IpoOutput& Interpolator2Dir::step(const IpoControls& c) {
     release();
   }
   publish(prevAcc);
+  fedThisCycle_ = 0;
   // the queue running dry forwards, or the oldest element kept reached backwards
   const bool standing = started_ && everFed_ && v_ == 0 && error_ == kIpoOk && !out_.finished;
   bool starved = false;

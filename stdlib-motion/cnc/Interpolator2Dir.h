@@ -7,8 +7,10 @@
 // with a velocity and acceleration, moved each cycle by the one-axis trajectory
 // generator (core/Trajectory.h) under the constraints that lie ahead in the
 // direction of travel:
-//  - inside an element: |v| <= F x |override|;
-//  - at a junction: |v| <= min(dVelEnd, next F) x |override| (0 with bSingleStep);
+//  - inside an element: |v| <= F x |override|, and on curves <= sqrt(E / curvature) as the
+//    path planner caps them (not scaled by the override: the acceleration is not);
+//  - at a junction: |v| <= min(dVelEnd, next F) x |override| and both curve caps (0 with
+//    bSingleStep);
 //  - stop points: v = 0 at an M function or dwell not served yet, at the end of
 //    what is known, at the oldest element kept (going backwards), at a G92.
 // Each cycle follows the time-optimal velocity plan towards the element's F unless
@@ -44,6 +46,9 @@ public:
   static constexpr int kLookAhead = 64;        // elements ahead of the one in control
   static constexpr int kMaxHistory = 4096;     // queue entries kept behind it
   static constexpr int kMaxPath = 8192;        // startAtEnd: elements of the whole path
+  // Elements taken per cycle: building a segment (arc-length tables of splines and ellipses)
+  // costs a few us, so a path start spreads them instead of making one long cycle.
+  static constexpr int kFeedsPerCycle = 8;
 
   // `error` is set (and nothing else done) when the settings are not usable:
   // the IpoSettings errors, or SMC_INT2DIR_BUFFER_TOO_SMALL (1050) for a history or
@@ -93,7 +98,9 @@ private:
   void fireSwitches(double from, double to);
   void release();
   void publish(double prevAcc);
-  bool atStopPoint() const;
+  bool atStopPoint(bool singleStep) const;
+  double junctionAfter(int i, bool singleStep, double ov, bool* last) const;
+  int motionBefore(int i) const;
 
   Ipo2DirSettings cfg_;
   int capacity_ = 0;
@@ -112,6 +119,8 @@ private:
   double dwellElapsed_ = 0;
   int direction_ = 0;
   int released_ = 0;
+  int fedThisCycle_ = 0;
+  int servedG92_ = -1;       // index of a G92 served this cycle (release() drops up to it)
   int16_t error_ = kIpoOk, warning_ = kIpoOk;
   IpoOutput out_;
 };

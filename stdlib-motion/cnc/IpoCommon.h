@@ -42,6 +42,18 @@ inline bool isIpoStop(const Element& e) {
   return !(e.type == MoveType::MCommand && (e.marks & MarkMPreAcknowledged));
 }
 
+// Shows the M function e (wM, K, L) while the path waits on it; TRUE, with the outputs
+// cleared, once it is acknowledged.
+inline bool waitOnM(IpoOutput& out, const Element& e, bool acknM) {
+  out.m = e.m;
+  out.mK = e.k;
+  out.mL = e.l;
+  if (!acknM) return false;
+  out.m = 0;
+  out.mK = out.mL = 0;
+  return true;
+}
+
 // Switch n on (+n) or off (-n) in the outputs (iLastSwitch, dwSwitches bits 0..31).
 inline void applySwitch(IpoOutput& out, int16_t sw) {
   out.lastSwitch = sw;
@@ -87,20 +99,21 @@ struct SwitchTrack {
   }
 };
 
-// Moves the switches of items 0..count-1 (at(i) has .track, .wayStart, .wayEnd, in path order)
-// from path position `from` to `to`.
+// Moves the switches of items from path position `from` to `to` (at(i) has .track, .wayStart,
+// .wayEnd, in path order): forwards the items first..count-1 (those before `first` lie wholly
+// behind `from`), backwards from the last item down to 0.
 template <class At>
-void moveSwitches(int count, At at, double from, double to, IpoOutput& out) {
+void moveSwitches(int first, int count, At at, double from, double to, IpoOutput& out) {
   if (to == from) return;
   const double tol = 1e-9 * std::max(1.0, std::fabs(to));
   if (to > from) {
-    for (int i = 0; i < count; ++i) {
+    for (int i = std::max(first, 0); i < count; ++i) {
       auto& it = at(i);
       if (it.wayStart > to + tol) break;
       it.track.forwardTo(to, tol, out);
     }
   } else {
-    for (int i = count - 1; i >= 0; --i) {
+    for (int i = std::min(first, count - 1); i >= 0; --i) {
       auto& it = at(i);
       if (it.wayEnd < to - tol) break;
       it.track.backTo(to, tol, out);

@@ -90,7 +90,7 @@ double XInterpolator::solve(const Item& it, int slot, double nx) const {
 }
 
 void XInterpolator::fireSwitches(double from, double to) {
-  moveSwitches(count_, [this](int i) -> Item& { return at(i); }, from, to, out_);
+  moveSwitches(0, count_, [this](int i) -> Item& { return at(i); }, from, to, out_);
 }
 
 // The unit tangent of the path (X/Y/Z) at a point of a segment; kept when it has none.

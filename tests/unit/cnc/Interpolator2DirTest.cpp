@@ -207,6 +207,31 @@ TEST(Interpolator2Dir, StopsAndBadOverride) {
   for (size_t i = 1; i < r.outs.size(); ++i) EXPECT_LE(std::fabs(r.outs[i].pos[AxX] - r.outs[i - 1].pos[AxX]), 10 * kCycle + 1e-12);
 }
 
+TEST(Interpolator2Dir, SingleStepWaitAtNextStopQuickStop) {
+  // two collinear lines: passed at F, except with bSingleStep (then a stop at X 10)
+  Run2 r("G1 X10 F10 E100 E-100\nG1 X20\n");
+  r.ctl.singleStep = true;
+  r.ctl.waitAtNextStop = true;
+  r.steps(1500);
+  EXPECT_EQ(r.outs.back().pos[AxX], 10.0);   // 10 u from rest to rest: 1.1 s, then held
+  EXPECT_EQ(r.outs[1099].pos[AxX], 10.0);
+  EXPECT_GT(r.outs[1098].vel, 0.0);
+  EXPECT_EQ(r.outs.back().status, IpoStatus::Wait);
+  r.ctl.waitAtNextStop = false;
+  r.ctl.singleStep = false;
+  r.steps(300);   // at F after 0.1 s
+  EXPECT_NEAR(r.outs.back().vel, 10.0, 1e-9);
+  const double x0 = r.outs.back().pos[AxX];
+  r.ctl.quickStop = true;
+  r.ctl.quickDecel = 1000;   // 10 u/s to rest in 0.01 s over 0.05 u
+  r.steps(50);
+  EXPECT_EQ(r.outs.back().vel, 0.0);
+  EXPECT_NEAR(r.outs.back().pos[AxX], x0 + 0.05, 1e-9);
+  r.ctl.quickStop = false;
+  EXPECT_GT(r.runToEnd(), 0);
+  EXPECT_EQ(r.outs.back().pos[AxX], 20.0);
+}
+
 TEST(Interpolator2Dir, JerkLimitedBothWays) {
   IpoSettings s;
   s.mode = VelMode::Sigmoid;
@@ -224,6 +249,33 @@ TEST(Interpolator2Dir, JerkLimitedBothWays) {
     sawIncreasing |= r.outs[i].status == IpoStatus::IncreasingAccel;
   }
   EXPECT_TRUE(sawIncreasing);
+}
+
+TEST(Interpolator2Dir, LimitsHoldOnASmoothPath) {
+  // tangent splines, arcs and helices: |dv| <= E per second, |v| <= F, v^2 / r <= E on arcs,
+  // every step of the set point within the distance the speed allows, forwards and back
+  const char* prog =
+      "G1 X0 Y10 F200 E2000 E-2000\nG5 X10 Y12.35\nG5 X20 Y12.92\nG5 X30 Y11.28\nG5 X40 Y9.37\n"
+      "G1 X50 Y9.37\nG2 X60 Y-0.63 Z1 I0 J-10\nG3 X70 Y-10.63 I10 J0\nG1 X70 Y-20\n";
+  Run2 r(prog);
+  r.steps(1500);
+  r.ctl.override = -1;
+  r.steps(1500);
+  for (size_t i = 1; i < r.outs.size(); ++i) {
+    const IpoOutput& a = r.outs[i - 1];
+    const IpoOutput& b = r.outs[i];
+    EXPECT_LE(std::fabs(b.vel - a.vel), 2000 * kCycle * (1 + 1e-9)) << i;
+    EXPECT_LE(b.vel, 200 + 1e-9);
+    double d = 0;
+    for (int k = 0; k < 3; ++k) d += (b.pos[k] - a.pos[k]) * (b.pos[k] - a.pos[k]);
+    // (the path segments' arc-length tables on splines are exact to a few 0.1 %)
+    EXPECT_LE(std::sqrt(d), std::max(a.vel, b.vel) * kCycle * 1.01 + 1e-9) << i;
+    // v^2 x curvature <= E: the helix (radius 10, rise 1 over a quarter turn), the arc (radius 10)
+    const double c = 1 / (kPi / 2);
+    const double kappa = b.sourceLine == 6 ? 10 / (100 + c * c) : b.sourceLine == 7 ? 0.1 : 0.0;
+    EXPECT_LE(b.vel * b.vel * kappa, 2000 * (1 + 1e-9)) << i;
+  }
+  EXPECT_LT(r.worstDistance(), 1e-9);
 }
 
 TEST(Interpolator2Dir, LongProgramBoundedWindow) {
