@@ -46,38 +46,11 @@ void startRun(sm3::SMC_Interpolator* self, MotionSession& s) {
 
 void SMC_Interpolator(sm3::SMC_Interpolator* self) {
   MotionSession& s = MotionSession::current();
-  const bool edge = self->bExecute && !self->__prev;
-  self->__prev = self->bExecute;
-  IpoState* st = s.instanceState<IpoState>(self->__handle, self);
-  if (self->bAbort) {   // abandon the path where it stands (no ramp: after an emergency stop)
-    if (st) dropRunState<IpoState>(s, self);
-    clearRunFlags(self);
-    self->bWorking = false;
-    self->dVel = 0;
-    self->iStatus = static_cast<int16_t>(stc::cnc::IpoStatus::Unknown);
-    return;
-  }
-  if (edge) {
-    if (st) dropRunState<IpoState>(s, self);
-    clearRunFlags(self);
-    startRun(self, s);
-    st = s.instanceState<IpoState>(self->__handle, self);
-  }
-  if (!st) {
-    if (!self->bExecute) clearRunFlags(self);
-    return;
-  }
-  if (!self->bExecute) st->stopping = true;
-
+  IpoState* st = beginTimedRunCall<IpoState>(s, self, startRun);
+  if (!st) return;
   stc::cnc::Interpolator& ipo = *st->ipo;
   QueueView v;
-  int16_t queueError = openRunQueue(s, self->poqDataIn, st->queue, st->fed, v);
-  const sm3::SMC_OUTQUEUE* q = st->queue;
-
-  if (queueError == 0 && ipo.error() == 0 && !st->stopping) {
-    if (st->fed < v.size() && q->byGenerator != kGenCheckVelocities) queueError = stc::cnc::kIpoNoCheckVelocities;
-    if (queueError == 0) queueError = feedFromQueue(v, st->fed, ipo, true);
-  }
+  const int16_t queueError = takeCheckedElements(s, self->poqDataIn, *st, ipo, v);
 
   const stc::cnc::IpoControls c = ipoControls(self, st->stopping || queueError != 0);
   const stc::cnc::IpoOutput& o = ipo.step(c);
@@ -92,21 +65,7 @@ void SMC_Interpolator(sm3::SMC_Interpolator* self) {
   self->__mK = o.mK;
   self->__mL = o.mL;
 
-  const int16_t err = queueError != 0 ? queueError : ipo.error();
-  if (err != 0) {
-    self->bError = true;
-    self->wErrorID = err;
-    self->bBusy = false;
-  } else {
-    self->wErrorID = ipo.warning();   // SMC_INT_DATA_UNDERRUN while the queue runs dry
-    self->bDone = o.finished;
-    self->bBusy = !o.finished;
-  }
-  if (st->stopping && o.vel == 0) {   // bExecute FALSE: dropped once at rest
-    dropRunState<IpoState>(s, self);
-    clearRunFlags(self);
-    self->bWorking = false;
-  }
+  endTimedRunCall(s, self, *st, ipo, o, queueError);
 }
 
 void SMC_GetMParameters(sm3::SMC_GetMParameters* self) {

@@ -59,37 +59,11 @@ void startRun(sm3::SMC_Interpolator2Dir* self, MotionSession& s) {
 
 void SMC_Interpolator2Dir(sm3::SMC_Interpolator2Dir* self) {
   MotionSession& s = MotionSession::current();
-  const bool edge = self->bExecute && !self->__prev;
-  self->__prev = self->bExecute;
-  Ipo2State* st = s.instanceState<Ipo2State>(self->__handle, self);
-  if (self->bAbort) {   // abandon the path where it stands
-    if (st) dropRunState<Ipo2State>(s, self);
-    clearRunFlags(self);
-    self->bWorking = false;
-    self->dVel = 0;
-    self->eDirection = 0;
-    self->iStatus = static_cast<int16_t>(stc::cnc::IpoStatus::Unknown);
-    return;
-  }
-  if (edge) {
-    if (st) dropRunState<Ipo2State>(s, self);
-    clearRunFlags(self);
-    startRun(self, s);
-    st = s.instanceState<Ipo2State>(self->__handle, self);
-  }
-  if (!st) {
-    if (!self->bExecute) clearRunFlags(self);
-    return;
-  }
-  if (!self->bExecute) st->stopping = true;
-
+  Ipo2State* st = beginTimedRunCall<Ipo2State>(s, self, startRun);
+  if (!st) return;
   stc::cnc::Interpolator2Dir& ipo = *st->ipo;
   QueueView v;
-  int16_t queueError = openRunQueue(s, self->poqDataIn, st->queue, st->fed, v);
-  if (queueError == 0 && ipo.error() == 0 && !st->stopping) {
-    if (st->fed < v.size() && st->queue->byGenerator != kGenCheckVelocities) queueError = stc::cnc::kIpoNoCheckVelocities;
-    if (queueError == 0) queueError = feedFromQueue(v, st->fed, ipo, true);
-  }
+  const int16_t queueError = takeCheckedElements(s, self->poqDataIn, *st, ipo, v);
 
   const stc::cnc::IpoControls c = ipoControls(self, st->stopping || queueError != 0);
   const stc::cnc::IpoOutput& o = ipo.step(c);
@@ -97,22 +71,7 @@ void SMC_Interpolator2Dir(sm3::SMC_Interpolator2Dir* self) {
   publishIpoOutputs(self, st->wayBase, o);
   self->eDirection = static_cast<int32_t>(ipo.direction());
 
-  const int16_t err = queueError != 0 ? queueError : ipo.error();
-  if (err != 0) {
-    self->bError = true;
-    self->wErrorID = err;
-    self->bBusy = false;
-  } else {
-    self->wErrorID = ipo.warning();   // SMC_INT_DATA_UNDERRUN: queue dry forwards, history used up backwards
-    self->bDone = o.finished;
-    self->bBusy = !o.finished;
-  }
-  if (st->stopping && o.vel == 0) {   // bExecute FALSE: dropped once at rest
-    dropRunState<Ipo2State>(s, self);
-    clearRunFlags(self);
-    self->bWorking = false;
-    self->eDirection = 0;
-  }
+  endTimedRunCall(s, self, *st, ipo, o, queueError);
 }
 
 void SMC_Interpolator2Dir_SlowTask(sm3::SMC_Interpolator2Dir_SlowTask* self) {

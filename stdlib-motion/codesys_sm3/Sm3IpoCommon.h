@@ -137,4 +137,71 @@ int16_t feedFromQueue(const QueueView& v, uint32_t& fed, Ipo& ipo, bool checkedO
   return 0;
 }
 
+// The start of every call of a time-based interpolator block (SMC_Interpolator,
+// SMC_Interpolator2Dir): the rising edge of bExecute starts a run (startRun), bAbort drops it
+// where it stands, bExecute FALSE marks it stopping.  Returns the run's state, or null when
+// no run goes on.
+template <class State, class T, class Start>
+State* beginTimedRunCall(MotionSession& s, T* self, Start startRun) {
+  const bool edge = self->bExecute && !self->__prev;
+  self->__prev = self->bExecute;
+  State* st = s.instanceState<State>(self->__handle, self);
+  if (self->bAbort) {   // abandon the path where it stands (no ramp: after an emergency stop)
+    if (st) dropRunState<State>(s, self);
+    clearRunFlags(self);
+    self->bWorking = false;
+    self->dVel = 0;
+    if constexpr (requires { self->eDirection; }) self->eDirection = 0;
+    self->iStatus = static_cast<int16_t>(cnc::IpoStatus::Unknown);
+    return nullptr;
+  }
+  if (edge) {
+    if (st) dropRunState<State>(s, self);
+    clearRunFlags(self);
+    startRun(self, s);
+    st = s.instanceState<State>(self->__handle, self);
+  }
+  if (!st) {
+    if (!self->bExecute) clearRunFlags(self);
+    return nullptr;
+  }
+  if (!self->bExecute) st->stopping = true;
+  return st;
+}
+
+// Opens the run's queue and hands the elements SMC_CheckVelocities has finished to `ipo`
+// (not while stopping).  Returns 0 or the queue error (1501, 1801, 1006 for a queue that
+// does not come from SMC_CheckVelocities, 1007).
+template <class State, class Ipo>
+int16_t takeCheckedElements(const MotionSession& s, void* poqDataIn, State& st, Ipo& ipo, QueueView& v) {
+  int16_t err = openRunQueue(s, poqDataIn, st.queue, st.fed, v);
+  if (err != 0 || ipo.error() != 0 || st.stopping) return err;
+  if (st.fed < v.size() && st.queue->byGenerator != kGenCheckVelocities) return cnc::kIpoNoCheckVelocities;
+  return feedFromQueue(v, st.fed, ipo, true);
+}
+
+// The end of every call of a time-based interpolator block: bError / wErrorID from the queue
+// or the core (the warning SMC_INT_DATA_UNDERRUN otherwise), bDone / bBusy, and the run
+// dropped once it stands after bExecute fell.
+template <class State, class T, class Ipo>
+void endTimedRunCall(MotionSession& s, T* self, const State& st, const Ipo& ipo, const cnc::IpoOutput& o,
+                     int16_t queueError) {
+  const int16_t err = queueError != 0 ? queueError : ipo.error();
+  if (err != 0) {
+    self->bError = true;
+    self->wErrorID = err;
+    self->bBusy = false;
+  } else {
+    self->wErrorID = ipo.warning();
+    self->bDone = o.finished;
+    self->bBusy = !o.finished;
+  }
+  if (st.stopping && o.vel == 0) {   // bExecute FALSE: dropped once at rest
+    dropRunState<State>(s, self);
+    clearRunFlags(self);
+    self->bWorking = false;
+    if constexpr (requires { self->eDirection; }) self->eDirection = 0;
+  }
+}
+
 }  // namespace stc::motion::sm3face
