@@ -6,12 +6,14 @@
 // with the junction rule of SMC_CheckVelocities, run at 1 ms.  Printed: the mean cost per
 // cycle over the whole run (feeding, appending with look-ahead, sampling, switches) and the
 // worst single cycle.  A second run: 2,000 short G1 lines meeting at sharp corners (a stop
-// at every element: the append-and-start path every few cycles).
+// at every element: the append-and-start path every few cycles).  Both again with
+// Interpolator2Dir (SMC_Interpolator2Dir, forwards, 10 elements of history).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "basic/Diagnostics.h"
@@ -19,6 +21,7 @@
 #include "stdlib-motion/cnc/Decoder.h"
 #include "stdlib-motion/cnc/Geometry.h"
 #include "stdlib-motion/cnc/Interpolator.h"
+#include "stdlib-motion/cnc/Interpolator2Dir.h"
 
 using namespace stc;
 using namespace stc::cnc;
@@ -61,6 +64,7 @@ void markJunctions(std::vector<Element>& els) {
   }
 }
 
+template <class Ipo>
 void run(const char* name, const std::string& text) {
   SourceManager sm;
   DiagnosticsEngine diags(sm);
@@ -79,7 +83,17 @@ void run(const char* name, const std::string& text) {
     IpoSettings cfg;
     cfg.cycle = 0.001;
     int16_t err = 0;
-    Interpolator ipo(cfg, err);
+    auto settings = [&] {
+      if constexpr (std::is_same_v<Ipo, Interpolator2Dir>) {
+        Ipo2DirSettings c2;
+        c2.ipo = cfg;
+        c2.history = 10;
+        return c2;
+      } else {
+        return cfg;
+      }
+    };
+    Ipo ipo(settings(), err);
     IpoControls ctl;
     size_t fed = 0;
     uint64_t n = 0;
@@ -90,7 +104,8 @@ void run(const char* name, const std::string& text) {
       while (fed < els.size() && ipo.wantsMore()) ipo.feed(els[fed++]);
       if (fed == els.size()) ipo.endOfList();
       const IpoOutput& o = ipo.step(ctl);
-      ipo.takeFinished();
+      if constexpr (std::is_same_v<Ipo, Interpolator2Dir>) ipo.takeReleased();
+      else ipo.takeFinished();
       const double dc = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
       worst = std::max(worst, dc);
       ++n;
@@ -111,7 +126,9 @@ void run(const char* name, const std::string& text) {
 }  // namespace
 
 int main() {
-  run("tangent splines/arcs/helices", smoothProgram(2000));
-  run("G1 lines, sharp corners", cornerProgram(2000));
+  run<Interpolator>("tangent splines/arcs/helices", smoothProgram(2000));
+  run<Interpolator>("G1 lines, sharp corners", cornerProgram(2000));
+  run<Interpolator2Dir>("2Dir: tangent splines/arcs/helices", smoothProgram(2000));
+  run<Interpolator2Dir>("2Dir: G1 lines, sharp corners", cornerProgram(2000));
   return 0;
 }

@@ -113,12 +113,15 @@ std::string trafoProgram(int n) {
 
 // Issue 16: the CNC pipeline as users write it, all from ST in one 1 ms task: SMC_NCDecoder
 // (a G-code loop of tangent splines, arcs and helices, 1000 passes: a path of some 20,000
-// elements) -> SMC_CheckVelocities -> SMC_Interpolator -> 3 x SMC_ControlAxisByPos.
-std::string cncProgram() {
+// elements) -> SMC_CheckVelocities -> SMC_Interpolator -> 3 x SMC_ControlAxisByPos.  With
+// twoDir: SMC_QueueSetReservedEntries (13) -> SMC_Interpolator2Dir + its slow-task block.
+std::string cncProgram(bool twoDir) {
   std::ostringstream s;
   s << "VAR_GLOBAL AxisX, AxisY, AxisZ : AXIS_REF_SM3; END_VAR\n"
     << "PROGRAM MAIN\nVAR\n  px, py, pz : MC_Power;\n  dec : SMC_NCDecoder;\n  cv : SMC_CheckVelocities;\n"
-    << "  ipo : SMC_Interpolator;\n  cx, cy, cz : SMC_ControlAxisByPos;\n  prog : SMC_CNC_REF;\n"
+    << (twoDir ? "  ipo : SMC_Interpolator2Dir;\n  res : SMC_QueueSetReservedEntries;\n  slow : SMC_Interpolator2Dir_SlowTask;\n"
+               : "  ipo : SMC_Interpolator;\n")
+    << "  cx, cy, cz : SMC_ControlAxisByPos;\n  prog : SMC_CNC_REF;\n"
     << "  ring : ARRAY[0..99] OF SMC_GEOINFO;\n  cycle : DINT;\n"
     << "  text : STRING(1000) := 'N10 G1 X0 Y10 F200 E2000 E-2000$NN20 G36 D1000$N"
        "N30 G5 X10 Y12.35$NN31 G5 X20 Y12.92$NN32 G5 X30 Y11.28$NN33 G5 X40 Y9.37$NN34 G5 X50 Y10.29$NN35 G5 X60 Y12.21$N"
@@ -132,7 +135,8 @@ std::string cncProgram() {
     << "pz(Axis := AxisZ, Enable := TRUE, bRegulatorOn := TRUE, bDriveStart := TRUE);\n"
     << "dec(ncprog := prog, bExecute := TRUE, nSizeOutQueue := SIZEOF(ring), pbyBufferOutQueue := ADR(ring));\n"
     << "cv(bExecute := TRUE, poqDataIn := dec.poqDataOut);\n"
-    << "ipo(bExecute := cycle > 2, poqDataIn := cv.poqDataOut, dwIpoTime := 1000, bEmergency_Stop := cx.bStopIpo OR cy.bStopIpo OR cz.bStopIpo);\n"
+    << (twoDir ? "res(bExecute := TRUE, poqDataIn := cv.poqDataOut, nNumReservedEntries := 13);\nslow(Interpolator2Dir := ipo);\n" : "")
+    << "ipo(bExecute := cycle > 2, poqDataIn := " << (twoDir ? "res" : "cv") << ".poqDataOut, dwIpoTime := 1000, bEmergency_Stop := cx.bStopIpo OR cy.bStopIpo OR cz.bStopIpo);\n"
     << "cx(Axis := AxisX, iStatus := ipo.iStatus, bEnable := ipo.bWorking, fSetPosition := ipo.piSetPosition.dX, fGapVelocity := 100, fGapAcceleration := 1000);\n"
     << "cy(Axis := AxisY, iStatus := ipo.iStatus, bEnable := ipo.bWorking, fSetPosition := ipo.piSetPosition.dY, fGapVelocity := 100, fGapAcceleration := 1000);\n"
     << "cz(Axis := AxisZ, iStatus := ipo.iStatus, bEnable := ipo.bWorking, fSetPosition := ipo.piSetPosition.dZ, fGapVelocity := 100, fGapAcceleration := 1000);\n"
@@ -145,7 +149,7 @@ double perCycle(int n, uint64_t cycles, bool cams, bool reads, bool groups = fal
                 bool cnc = false) {
   const std::string file = "/tmp/stc_st_motion_bench_" + std::string(cnc ? "cnc_" : trafo ? "trafo_" : scara ? "scara_" : groups ? "group_" : cams ? "cam_" : "") +
                            (reads ? "reads_" : "") + std::to_string(n) + ".st";
-  std::ofstream(file) << (cnc ? cncProgram() : trafo ? trafoProgram(n) : groups ? groupProgram(n, scara) : cams ? camProgram(n, reads) : program(n, reads));
+  std::ofstream(file) << (cnc ? cncProgram(n == 2) : trafo ? trafoProgram(n) : groups ? groupProgram(n, scara) : cams ? camProgram(n, reads) : program(n, reads));
   Compilation comp;
   comp.addPath(file);
   CompileOptions co;
@@ -213,10 +217,13 @@ int main(int argc, char** argv) {
                 n, best * 1e6, static_cast<unsigned long long>(cycles));
   }
   if (only.empty() || only == "cnc") {
-    double best = 1e9;
-    for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(1, cycles, false, false, false, false, false, true));
-    std::printf("    1 CNC pipeline (SMC_NCDecoder -> SMC_CheckVelocities -> SMC_Interpolator -> 3 x SMC_ControlAxisByPos from ST): %8.2f us per cycle (best of 3, %llu cycles)\n",
-                best * 1e6, static_cast<unsigned long long>(cycles));
+    for (int twoDir = 0; twoDir < 2; ++twoDir) {   // n = 2 selects SMC_Interpolator2Dir
+      double best = 1e9;
+      for (int rep = 0; rep < 3; ++rep) best = std::min(best, perCycle(twoDir ? 2 : 1, cycles, false, false, false, false, false, true));
+      std::printf("    1 CNC pipeline (SMC_NCDecoder -> SMC_CheckVelocities -> %s -> 3 x SMC_ControlAxisByPos from ST): %8.2f us per cycle (best of 3, %llu cycles)\n",
+                  twoDir ? "SMC_QueueSetReservedEntries -> SMC_Interpolator2Dir (+ _SlowTask)" : "SMC_Interpolator", best * 1e6,
+                  static_cast<unsigned long long>(cycles));
+    }
   }
   if (only.empty() || only == "trafo") {
     const int n = 1000;
