@@ -82,6 +82,7 @@ public:
   bool endAsDone = false;                 // Ending: Done (else CommandAborted or the error below)
   int32_t endError = 0;
   int preProcessNum = 1;
+  bool fedAny = false;                    // an element went to the interpolator
   double quickDecel = 0;                  // Stop: LimitAccDec
   double velRatio = 1;
 
@@ -267,6 +268,7 @@ void feed(GCodeRun& r) {
   ProgramWindow& p = *r.program;
   while (p.hasFinal() && r.ipo->wantsMore() && r.flightCount < stc::cnc::Interpolator::kMaxInFlight) {
     if (r.ipo->feed(p.front()) != stc::cnc::kIpoOk) return;
+    r.fedAny = true;
     r.inFlight[(r.flightHead + r.flightCount) % stc::cnc::Interpolator::kMaxInFlight] = p.front().line;
     ++r.flightCount;
     p.pop();
@@ -282,7 +284,13 @@ void cycleRun(T* self, GCodeRun& r, const GInputs& in, const CallCtx& c) {
   if (r.phase == Phase::Running) {
     r.program->pump(static_cast<uint32_t>(r.preProcessNum), r.ipo->inFlight() == 0);
     feed(r);
-    if (r.program->error() != 0) noteProgramError(r);
+    if (r.program->error() != 0) {
+      noteProgramError(r);
+      if (!r.fedAny) {   // nothing has moved: the axes are free at once and the error shows now
+        releaseAxes(self, r, c);
+        return finishRun(r, false, false, r.endError, c);
+      }
+    }
   }
   stc::cnc::IpoControls ctl;
   ctl.slowStop = in.halt;
@@ -391,6 +399,7 @@ void startRun(T* self, GCodeRun& r, Axis* const (&axes)[N], const stc::cnc::Axis
   r.lastSwitch = 0;
   r.m = 0;
   r.flightHead = r.flightCount = 0;
+  r.fedAny = false;
   r.lastFinished = r.beforeLastFinished = 0;
   for (int32_t& l : r.shownLines) l = -1;
   auto fail = [&](int32_t e) { finishRun(r, false, false, e, c); };
