@@ -101,7 +101,7 @@ public:
   uint32_t switches = 0;
   int16_t lastSwitch = 0;
   uint16_t m = 0;
-  int32_t shownLines[3] = {-1, -1, -1};
+  int32_t shownLines[3] = {-1, -1, -1};   // the lines whose text GCodeTextArr holds
   bool terminal() const { return done || aborted || error; }
 };
 
@@ -330,20 +330,22 @@ void cycleRun(T* self, GCodeRun& r, const GInputs& in, const CallCtx& c) {
   }
 }
 
-// The lines of the previous, current and next element and their text (the 6-axis block).
+// The lines of the previous, current and next element and their text (the 6-axis block),
+// while a program runs; they keep their last values when it has ended.
 template <class T>
 void showLines(T* self, GCodeRun& r) {
+  if (!r.program) return;
   const bool flying = r.flightCount > 0;
   const int32_t current = flying ? r.inFlight[r.flightHead] : r.lastFinished;
   const int32_t previous = flying ? r.lastFinished : r.beforeLastFinished;
   int32_t next = 0;
   if (r.flightCount > 1) next = r.inFlight[(r.flightHead + 1) % stc::cnc::Interpolator::kMaxInFlight];
-  else if (r.program) next = r.program->nextLine();
+  else next = r.program->nextLine();
   if constexpr (requires { self->GCodeTextNoArr; }) {
     const int32_t lines[3] = {previous, current, next};
     for (int i = 0; i < 3; ++i) {
       self->GCodeTextNoArr[i] = lines[i];
-      if (lines[i] == r.shownLines[i] || !r.program) continue;
+      if (lines[i] == r.shownLines[i]) continue;
       r.shownLines[i] = lines[i];
       const std::string_view text = r.program->lineText(lines[i]);
       const size_t room = sizeof self->GCodeTextArr[i] - 1;
@@ -401,7 +403,14 @@ void startRun(T* self, GCodeRun& r, Axis* const (&axes)[N], const stc::cnc::Axis
   r.flightHead = r.flightCount = 0;
   r.fedAny = false;
   r.lastFinished = r.beforeLastFinished = 0;
-  for (int32_t& l : r.shownLines) l = -1;
+  self->LineCurrent = 0;
+  if constexpr (requires { self->GCodeTextNoArr; }) {
+    for (int i = 0; i < 3; ++i) {
+      self->GCodeTextNoArr[i] = 0;
+      self->GCodeTextArr[i][0] = 0;
+      r.shownLines[i] = 0;
+    }
+  }
   auto fail = [&](int32_t e) { finishRun(r, false, false, e, c); };
   Kernel& k = kernel();
   if (int32_t e = checkInputs(in, N, c); e != 0) return fail(e);
