@@ -199,4 +199,5 @@ void registerSm3CamNatives(MotionLibrary& lib);    // Sm3Cam.cpp: cams, tappets,
 void registerSm3TrafoNatives(MotionLibrary& lib);  // Sm3Trafo.cpp: kinematic transformations (SM3_CNC)
 void registerLsFollowNatives(MotionLibrary& lib);   // leadshine/LsFollow.cpp
 void registerLsInterpolationNatives(MotionLibrary& lib);   // leadshine/LsInterpolation.cpp
+void registerLsGCodeNatives(MotionLibrary& lib);   // leadshine/LsGCode.cpp
 }  // namespace stc::motion

@@ -245,6 +245,7 @@ void registerSm3Natives(MotionLibrary& lib) {
   registerSm3TrafoNatives(lib);
   registerLsFollowNatives(lib);
   registerLsInterpolationNatives(lib);
+  registerLsGCodeNatives(lib);
   STC_SM3_NATIVE(MC_Power, MC_Power)
   STC_SM3_NATIVE(MC_Reset, MC_Reset)
   STC_SM3_NATIVE(MC_MoveAbsolute, moveBody<sm3::MC_MoveAbsolute, FbKind::MoveAbsolute>)

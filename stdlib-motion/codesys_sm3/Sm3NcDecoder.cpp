@@ -1,20 +1,16 @@
 // SMC_ReadNCFile and SMC_NCDecoder (sm3_cnc_decoder.st; docs/cnc.md, "The pipeline
 // blocks"): a G-code file of the data directory read into a buffer of the program, and
 // decoded by stdlib-motion/cnc's Decoder into the user's SMC_GEOINFO ring (SMC_OUTQUEUE).
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <iostream>
 #include <memory>
 
 #include "stdlib-motion/cnc/Decoder.h"
 #include "stdlib-motion/codesys_sm3/Sm3Face.h"
 #include "stdlib-motion/codesys_sm3/Sm3GeoInfo.h"
-#include "vm/FileSandbox.h"
+#include "stdlib-motion/codesys_sm3/Sm3NcProgram.h"
 
 using namespace stc::motion;
 using namespace stc::motion::sm3face;
@@ -36,12 +32,10 @@ enum : int16_t {
   kBufferTooSmall = 2002,     // SMC_RNCF_BUFFER_TOO_SMALL
 };
 
-constexpr uint16_t kCncRefId = 0xBA56;
 constexpr uint16_t kOutQueueId = 0x9878;
 constexpr uint8_t kGeneratorDecoder = 1;
 constexpr uint32_t kMinElements = 5;
 constexpr uint32_t kBlocksPerCall = 100;
-constexpr uint64_t kMaxProgramBytes = 64ull << 20;
 constexpr size_t kStaging = 8;
 
 template <size_t N>
@@ -79,26 +73,17 @@ void SMC_ReadNCFile(sm3::SMC_ReadNCFile* self) {
   if (self->pvl) return fail(kNotVarList);
   if (!self->pBuffer || self->dwBufferSize == 0 || !s.inImage(self->pBuffer, self->dwBufferSize)) return fail(kNoBuffer);
   const std::string name = getString(self->sFileName);
-  std::string why;
-  const int fd = name.empty() ? -1 : stc::vm::openInside(s.filesDir(), name, stc::vm::FileAccess::Read, why);
-  if (fd < 0) return fail(kFileDoesntExist);
-  struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    ::close(fd);
-    return fail(kFileDoesntExist);
-  }
-  self->dwFileSize = static_cast<uint32_t>(std::min<uint64_t>(static_cast<uint64_t>(st.st_size), UINT32_MAX));
-  const uint64_t room = std::min<uint64_t>(self->dwBufferSize, kMaxProgramBytes);
+  const uint64_t room = std::min<uint64_t>(self->dwBufferSize, kMaxNcProgramBytes);
   std::string text;
-  switch (stc::vm::readAndClose(fd, room, text)) {
-  case stc::vm::ReadResult::Ok: break;
-  case stc::vm::ReadResult::TooBig: return fail(kBufferTooSmall);
-  case stc::vm::ReadResult::Failed: return fail(kFileDoesntExist);
-  }
+  uint64_t size = 0;
+  const NcFileRead r = readNcFile(s, name, room, text, size);
+  self->dwFileSize = static_cast<uint32_t>(std::min<uint64_t>(size, UINT32_MAX));
+  if (r == NcFileRead::Missing) return fail(kFileDoesntExist);
+  if (r == NcFileRead::TooBig) return fail(kBufferTooSmall);
   std::memcpy(self->pBuffer, text.data(), text.size());
   if (text.size() < self->dwBufferSize) static_cast<uint8_t*>(self->pBuffer)[text.size()] = 0;
   sm3::SMC_CNC_REF& p = self->ncprog;
-  p.wCNCREFStructID = kCncRefId;
+  p.wCNCREFStructID = kCncRefStructId;
   p.pText = static_cast<uint8_t*>(self->pBuffer);
   p.dwTextSize = static_cast<uint32_t>(text.size());
   putString(p.strFileName, name);
@@ -131,13 +116,6 @@ bool finite(const sm3::SMC_POSINFO& p) {
   for (double v : {p.dX, p.dY, p.dZ, p.dA, p.dB, p.dC, p.dA1, p.dA2, p.dA3, p.dA4, p.dA5})
     if (!std::isfinite(v) || std::fabs(v) > 1e10) return false;
   return true;
-}
-
-// Writes the diagnostics not yet written (G-code warnings and errors at file:line:col).
-void printDiagnostics(NcState& st) {
-  const auto& ds = st.diags.diagnostics();
-  for (; st.printed < ds.size(); ++st.printed) std::cerr << stc::renderText(st.sm, ds[st.printed]);
-  std::cerr.flush();
 }
 
 void stop(sm3::SMC_NCDecoder* self, NcState* st, int16_t error) {
@@ -173,9 +151,7 @@ void startDecoder(sm3::SMC_NCDecoder* self, MotionSession& s) {
   // The queue lives in this instance, so the instance must be static too.
   if (!s.inImage(self, sizeof *self)) return stop(self, nullptr, kNotInBuffer);
   const sm3::SMC_CNC_REF* p = self->ncprog;
-  if (!p || !s.inImage(p, sizeof *p) || p->wCNCREFStructID != kCncRefId || p->dwTextSize > kMaxProgramBytes ||
-      (p->dwTextSize > 0 && !s.inImage(p->pText, p->dwTextSize)))
-    return stop(self, nullptr, kNoCncRef);
+  if (!usableCncRef(s, p)) return stop(self, nullptr, kNoCncRef);
   auto* buffer = reinterpret_cast<uint8_t*>(self->pbyBufferOutQueue);
   if (!buffer || !s.inImage(buffer, self->nSizeOutQueue)) return stop(self, nullptr, kNotInBuffer);
   if (reinterpret_cast<uintptr_t>(buffer) % alignof(sm3::SMC_GEOINFO) != 0) return stop(self, nullptr, kBufferMisaligned);
@@ -270,7 +246,7 @@ void SMC_NCDecoder(sm3::SMC_NCDecoder* self) {
     if (budget == 0) break;
     const stc::cnc::StepResult r = st->dec->step(st->staging, budget);
     budget -= std::min(budget, r.blocks);
-    printDiagnostics(*st);
+    printNewDiagnostics(st->diags, st->printed);
     lineOutputs(self, *st);
     if (st->dec->errorCount() > 0) {
       flush(*st, q);   // the elements before the error stay in the queue; bEndOfList stays FALSE

@@ -76,8 +76,9 @@ struct Gen {
         // Untyped, but a structure it points to is emitted so the native can cast to it.
         if (t->element && t->element->underlying()->kind == TypeKind::Struct) emitStruct(t->element->underlying());
         return "void*";
-      case TypeKind::String: suffix = "[" + std::to_string(t->length + 1) + "]" + suffix; return "char";
-      case TypeKind::WString: suffix = "[" + std::to_string(t->length + 1) + "]" + suffix; return "char16_t";
+      // The characters are the innermost dimension: ARRAY[0..2] OF STRING(255) is char[3][256].
+      case TypeKind::String: suffix += "[" + std::to_string(t->length + 1) + "]"; return "char";
+      case TypeKind::WString: suffix += "[" + std::to_string(t->length + 1) + "]"; return "char16_t";
       case TypeKind::Interface: return "stc_interface";
       case TypeKind::Array: {
         uint64_t count = 1;
