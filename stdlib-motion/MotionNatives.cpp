@@ -62,6 +62,7 @@ bool MotionSession::start(const vm::StartCtx& sc, std::string& error) {
   mirrorsRead = sc.mirroredRead;
   imageBegin_ = sc.image;
   imageEnd_ = sc.image + sc.imageSize;
+  lookupVariable_ = sc.lookupVariable;
   // The cams of project.toml into their variables.
   for (const CamConfig& cc : cfg_.cams) {
     std::string type;

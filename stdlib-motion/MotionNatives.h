@@ -177,6 +177,15 @@ public:
     return b && b >= imageBegin_ && b <= imageEnd_ && bytes <= static_cast<uint64_t>(imageEnd_ - b);
   }
   const std::string& filesDir() const { return cfg_.filesDir; }
+  // A variable of the program by name (`x`, `GVL.x`, `arr[2]`, `MAIN.fb.q`), for G-code
+  // $name$ while the run goes (vm::StartCtx::lookupVariable).  False with `error` if none.
+  bool findVariable(const std::string& path, vm::StartCtx::Variable& out, std::string& error) const {
+    if (!lookupVariable_) {
+      error = "no program variables in this controller";
+      return false;
+    }
+    return lookupVariable_(path, out, error);
+  }
 
   // FILE.* (CAA File, codesys_sm3/Sm3File.cpp): the files the program has open; a handle
   // is slot + 1 with the slot's generation above, so a stale handle finds nothing.
@@ -213,6 +222,7 @@ private:
   std::shared_ptr<IoRuntime> io_;
   const uint8_t* imageBegin_ = nullptr;
   const uint8_t* imageEnd_ = nullptr;
+  std::function<bool(const std::string&, vm::StartCtx::Variable&, std::string&)> lookupVariable_;
 };
 
 // The kernel of the calling controller.

@@ -234,7 +234,20 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
                   else
                     out.byte = image_ + ref.offset;
                   return true;
-                }};
+                },
+                {}};
+    sc.lookupVariable = [this](const std::string& path, StartCtx::Variable& out, std::string& e) -> bool {
+      ValueRef ref;
+      if (!resolvePath(module_->image, *model_.layout, path, ref, e)) return false;
+      // Process inputs (%I) are copied into the image before each slot; the image is
+      // where the program reads them, so reading there is right and a write would be lost.
+      out.address = image_ + ref.offset;
+      out.bit = ref.bit;
+      out.typeName = ref.type ? ref.type->name : std::string();
+      const codegen::ImageMap& m = module_->image;
+      out.constant = ref.constant || (ref.offset >= m.inputOffset && ref.offset < m.inputOffset + m.inputSize);
+      return true;
+    };
     sc.mirroredRead = mirroredRead;
     for (const auto& s : sessions_) {
       std::string e;

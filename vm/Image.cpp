@@ -403,6 +403,7 @@ bool resolvePath(const codegen::ImageMap& map, const sema::Layout& layout, const
   bool mirrored = false;
   out.retain = root->retain;
   out.persistent = root->persistent;
+  out.constant = root->constant;
   out.bit = root->bit;
   auto applyIndex = [&](const Seg& s) -> bool {
     const Type* at = strip(t);

@@ -17,6 +17,7 @@ struct ValueRef {
   uint64_t offset = 0;                 // from the image base
   const sema::Type* type = nullptr;
   bool retain = false, persistent = false;
+  bool constant = false;               // the root is a CONSTANT
   int bit = -1;                        // a BOOL view of one bit
   // The path crosses or holds an {attribute 'mirrored'} struct: whoever reads it
   // needs the natives to keep those structs current (RunOptions::observesMirrored).

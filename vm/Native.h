@@ -47,6 +47,17 @@ struct StartCtx {
     int bit = -1;              // -1: the whole byte is the BOOL
   };
   std::function<bool(const std::string& path, BoolTarget& out)> lookupBool;
+  // A variable found by name while the run goes (G-code `$name$`): where it is, its type
+  // name as declared (`LREAL`, `INT`, an alias ...) and whether it is a CONSTANT.  Unlike
+  // the two above, this one may be kept and called until the run ends (it refers only to
+  // the controller, which outlives its sessions).  False with `error` if there is none.
+  struct Variable {
+    uint8_t* address = nullptr;
+    int bit = -1;              // a BOOL view of one bit (AT %MX1.2)
+    std::string typeName;
+    bool constant = false;
+  };
+  std::function<bool(const std::string& path, Variable& out, std::string& error)> lookupVariable;
   // Whether anyone reads the {attribute 'mirrored'} structs (AXIS_REF_SM3 ...): ST code
   // (sema::Model::readsMirrored), a watch, a trace, a scenario probe or a retain file.
   // When false the natives may leave them as they are (they still bind them).

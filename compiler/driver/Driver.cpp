@@ -159,30 +159,45 @@ bool Compilation::addPath(const std::string& path) {
 }
 
 namespace {
-// `stc check` knows a $name$ of a G-code program when a global variable has that name
-// (x or GVL.x, any case); its value comes at run time, so it reads as 0 here and the
-// geometry of a block with variables is left to the decoder at run time.
+// `stc check` knows a $name$ of a G-code program when it starts with a global variable
+// (x, GVL.x, x[2], x.member, any case) or a PROGRAM (MAIN.x), as the run-time lookup
+// (codesys_sm3/Sm3NcProgram.h, NcVariables) takes them; its value comes at run time, so it
+// reads as 0 here and the geometry of a block with variables is left to the decoder then.
 class CheckedVariables : public cnc::VariableAccess {
 public:
   explicit CheckedVariables(ast::ASTContext& ast) {
     for (const ast::SourceUnit& u : ast.units())
-      for (const ast::Decl* d : u.decls)
-        if (auto* g = ast::dyn_cast<ast::GlobalVarDecl>(d))
+      for (const ast::Decl* d : u.decls) {
+        if (auto* g = ast::dyn_cast<ast::GlobalVarDecl>(d)) {
           for (const ast::VarDecl* v : g->block.vars) {
             names_.insert(asciiLower(v->name.name));
             spelled_.push_back(v->name.name);
             if (!g->listName.name.empty()) names_.insert(asciiLower(g->listName.name + "." + v->name.name));
           }
+        } else if (auto* p = ast::dyn_cast<ast::PouDecl>(d); p && p->pouKind == ast::PouKind::Program) {
+          programs_.insert(asciiLower(p->name.str()));
+        }
+      }
   }
   bool read(std::string_view name, double& v) override {
     v = 0;
-    return names_.count(asciiLower(std::string(name))) != 0;
+    return known(name);
   }
-  bool write(std::string_view name, double) override { return names_.count(asciiLower(std::string(name))) != 0; }
+  bool write(std::string_view name, double) override { return known(name); }
   std::string suggest(std::string_view name) override { return closestMatch(name, spelled_); }
 
 private:
+  // The root of the name (before an index or a member) is a global, GVL.global or a PROGRAM.
+  bool known(std::string_view name) const {
+    const std::string n = asciiLower(std::string(name.substr(0, name.find('['))));
+    const size_t dot = n.find('.');
+    if (names_.count(n) || names_.count(n.substr(0, dot))) return true;
+    if (dot == std::string::npos) return false;
+    if (programs_.count(n.substr(0, dot))) return true;
+    return names_.count(n.substr(0, n.find('.', dot + 1))) != 0;   // GVL.x.member
+  }
   std::set<std::string> names_;
+  std::set<std::string> programs_;
   std::vector<std::string> spelled_;   // as declared
 };
 }  // namespace

@@ -250,6 +250,10 @@ bool Decoder::resolve(const Block& b, const Word& w, double& v) {
     return false;
   }
   if (!vars_->read(name, v)) {
+    if (std::string why = vars_->problem(); !why.empty()) {
+      rep_.error(w.begin, w.end, "cannot read the variable '$" + std::string(name) + "$': " + why, "gcode-variable");
+      return false;
+    }
     const std::string near = vars_->suggest(name);
     rep_.error(w.begin, w.end, "unknown variable '$" + std::string(name) + "$'" + (near.empty() ? "" : "; did you mean '$" + near + "$'?"),
                "gcode-variable");
@@ -634,7 +638,9 @@ bool Decoder::variable(const Block& b, const BlockCmds& c) {
       v += d;
     }
     if (!vars_ || !vars_->write(name, v)) {
-      rep_.error(o.begin, o.end, "cannot write the variable '$" + std::string(name) + "$'", "gcode-variable");
+      const std::string why = vars_ ? vars_->problem() : std::string("no variable source was given to the decoder");
+      rep_.error(o.begin, o.end, "cannot write the variable '$" + std::string(name) + "$'" + (why.empty() ? "" : ": " + why),
+                 "gcode-variable");
       return false;
     }
   } else {

@@ -40,6 +40,9 @@ public:
   virtual bool write(std::string_view name, double value) = 0;
   // A known name close to an unknown one, for "did you mean" (empty: none).
   virtual std::string suggest(std::string_view name) { return {}; }
+  // Why the last read or write of a name that exists failed (its type, a CONSTANT, a value
+  // the type cannot hold); empty when the name is simply unknown.
+  virtual std::string problem() const { return {}; }
 };
 
 struct DecoderOptions {

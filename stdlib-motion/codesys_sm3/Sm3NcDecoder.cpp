@@ -69,8 +69,7 @@ void SMC_ReadNCFile(sm3::SMC_ReadNCFile* self) {
     self->ErrorID = id;
   };
   MotionSession& s = MotionSession::current();
-  // Variable lists are not supported yet (docs/cnc.md): refused rather than ignored.
-  if (self->pvl) return fail(kNotVarList);
+  if (self->pvl && !usableVarList(s, self->pvl)) return fail(kNotVarList);
   if (!self->pBuffer || self->dwBufferSize == 0 || !s.inImage(self->pBuffer, self->dwBufferSize)) return fail(kNoBuffer);
   const std::string name = getString(self->sFileName);
   const uint64_t room = std::min<uint64_t>(self->dwBufferSize, kMaxNcProgramBytes);
@@ -93,6 +92,7 @@ void SMC_ReadNCFile(sm3::SMC_ReadNCFile* self) {
   p.fDefaultVelFF = self->fDefaultVelFF;
   p.fDefaultAccelFF = self->fDefaultAccelFF;
   p.fDefaultDecelFF = self->fDefaultDecelFF;
+  p.pvl = self->pvl;
   self->dwFileSize = static_cast<uint32_t>(text.size());
   self->dwPos = static_cast<uint32_t>(text.size());
   self->bDone = self->bExecuteDecoder = true;
@@ -105,6 +105,7 @@ struct NcState : MotionSession::InstanceState {
   stc::SourceManager sm;
   stc::DiagnosticsEngine diags{sm};
   uint32_t file = 0;
+  std::unique_ptr<NcVariables> vars;   // the program's $name$ (before dec: it outlives it)
   std::unique_ptr<stc::cnc::Decoder> dec;
   stc::cnc::ElementQueue staging{kStaging};
   size_t printed = 0;        // diagnostics already written to stderr
@@ -152,6 +153,7 @@ void startDecoder(sm3::SMC_NCDecoder* self, MotionSession& s) {
   if (!s.inImage(self, sizeof *self)) return stop(self, nullptr, kNotInBuffer);
   const sm3::SMC_CNC_REF* p = self->ncprog;
   if (!usableCncRef(s, p)) return stop(self, nullptr, kNoCncRef);
+  if (p->pvl && !usableVarList(s, p->pvl)) return stop(self, nullptr, kNotVarList);
   auto* buffer = reinterpret_cast<uint8_t*>(self->pbyBufferOutQueue);
   if (!buffer || !s.inImage(buffer, self->nSizeOutQueue)) return stop(self, nullptr, kNotInBuffer);
   if (reinterpret_cast<uintptr_t>(buffer) % alignof(sm3::SMC_GEOINFO) != 0) return stop(self, nullptr, kBufferMisaligned);
@@ -183,7 +185,8 @@ void startDecoder(sm3::SMC_NCDecoder* self, MotionSession& s) {
   o.defaultRapidAcc = dflt(p->fDefaultAccelFF);
   o.defaultRapidDec = dflt(p->fDefaultDecelFF);
   o.stopAtFirstError = true;
-  st.dec = std::make_unique<stc::cnc::Decoder>(st.sm, st.file, st.diags, o, nullptr);
+  st.vars = std::make_unique<NcVariables>(s, p->pvl);
+  st.dec = std::make_unique<stc::cnc::Decoder>(st.sm, st.file, st.diags, o, st.vars.get());
   st.running = true;
 
   sm3::SMC_OUTQUEUE& q = self->__oq;

@@ -35,6 +35,7 @@ namespace {
 constexpr int32_t kNoCncRef = 1500;       // SMC_NO_CNC_REF_TYPE
 constexpr int32_t kFileMissing = 2000;    // SMC_RNCF_FILE_DOESNT_EXIST
 constexpr int32_t kFileTooBig = 2002;     // SMC_RNCF_BUFFER_TOO_SMALL
+constexpr int32_t kNotVarList = 2005;     // SMC_RNCF_NOT_VARLIST
 constexpr size_t kMaxAxes = 6;
 constexpr double kMaxOffset = 1e10;       // the decoder's bound of a position after offsets
 
@@ -59,6 +60,7 @@ struct ProgramSource {
   const sm3::SMC_CNC_REF* ref = nullptr;
   bool fromFile = false;
   std::string fileName;
+  const void* varList = nullptr;     // SMC_VarList_0 (the 6-axis block)
 };
 
 enum class Phase : uint8_t { Idle, Running, Stopping, Ending };
@@ -154,9 +156,11 @@ int32_t checkAxes(Kernel& k, Axis* const* axes, size_t n) {
 
 // The program's text and decoder options; 0 or the block's error.
 int32_t loadProgram(const ProgramSource& src, const GInputs& in, std::string& name, std::string& text,
-                    stc::cnc::DecoderOptions& o) {
+                    stc::cnc::DecoderOptions& o, std::unique_ptr<NcVariables>& vars) {
   MotionSession& s = MotionSession::current();
+  if (src.varList && !usableVarList(s, src.varList)) return kNotVarList;
   if (src.fromFile) {
+    vars = std::make_unique<NcVariables>(s, src.varList);
     uint64_t size = 0;
     switch (readNcFile(s, src.fileName, kMaxNcProgramBytes, text, size)) {
     case NcFileRead::Ok: break;
@@ -175,6 +179,8 @@ int32_t loadProgram(const ProgramSource& src, const GInputs& in, std::string& na
   }
   const sm3::SMC_CNC_REF* p = src.ref;
   if (!usableCncRef(s, p)) return kNoCncRef;
+  if (p->pvl && !usableVarList(s, p->pvl)) return kNotVarList;
+  vars = std::make_unique<NcVariables>(s, p->pvl);
   // The program's defaults: 0 is "not set" (then LimitVel / LimitAccDec; G0 uses F / E / E-).
   if (!usableDefault(p->fDefaultVel, bounds::kVelocity) || !usableDefault(p->fDefaultVelFF, bounds::kVelocity)) return kIpoVel;
   if (!usableDefault(p->fDefaultAccel, bounds::kRate) || !usableDefault(p->fDefaultAccelFF, bounds::kRate)) return kIpoAcc;
@@ -384,6 +390,7 @@ ProgramSource sourceOf(const T* s) {
   if constexpr (requires { s->CNC_FileName; }) {
     src.fromFile = true;
     src.fileName.assign(s->CNC_FileName, strnlen(s->CNC_FileName, sizeof s->CNC_FileName));
+    if constexpr (requires { s->SMC_VarList_0; }) src.varList = &s->SMC_VarList_0;
   } else {
     src.ref = static_cast<const sm3::SMC_CNC_REF*>(s->CNC_Ref);   // POINTER TO: an untyped address
   }
@@ -419,8 +426,10 @@ void startRun(T* self, GCodeRun& r, Axis* const (&axes)[N], const stc::cnc::Axis
 
   std::string name, text;
   stc::cnc::DecoderOptions opts;
-  if (int32_t e = loadProgram(sourceOf(self), in, name, text, opts); e != 0) {
+  std::unique_ptr<NcVariables> vars;
+  if (int32_t e = loadProgram(sourceOf(self), in, name, text, opts, vars); e != 0) {
     r.decodeError = e == kFileMissing || e == kFileTooBig;
+    r.readError = e == kNotVarList;
     return fail(e);
   }
   opts.stopAtFirstError = true;
@@ -443,7 +452,7 @@ void startRun(T* self, GCodeRun& r, Axis* const (&axes)[N], const stc::cnc::Axis
   int16_t ipoError = 0;
   auto ipo = std::make_unique<stc::cnc::Interpolator>(cfg, ipoError);
   if (ipoError != 0) return fail(ipoError);
-  r.program = std::make_unique<ProgramWindow>(std::move(name), std::move(text), opts, lim);
+  r.program = std::make_unique<ProgramWindow>(std::move(name), std::move(text), opts, lim, std::move(vars));
   r.ipo = std::move(ipo);
 
   // Each axis: a follow command holding it where it stands (it becomes the command in control).

@@ -17,10 +17,11 @@ bool isArc(const cnc::Element& e) { return e.type == cnc::MoveType::Clw || e.typ
 
 }  // namespace
 
-ProgramWindow::ProgramWindow(std::string name, std::string text, const cnc::DecoderOptions& opts, const PathLimits& limits)
-    : limits_(limits) {
+ProgramWindow::ProgramWindow(std::string name, std::string text, const cnc::DecoderOptions& opts, const PathLimits& limits,
+                             std::unique_ptr<cnc::VariableAccess> vars)
+    : limits_(limits), vars_(std::move(vars)) {
   file_ = sm_.addBuffer(std::move(name), std::move(text));
-  decoder_ = std::make_unique<cnc::Decoder>(sm_, file_, diags_, opts, nullptr);   // no $var$ source yet
+  decoder_ = std::make_unique<cnc::Decoder>(sm_, file_, diags_, opts, vars_.get());
   // The additional axes follow the path length: at a junction their velocity may jump; allow
   // what LimitAccDec changes in one cycle (SMC_CheckVelocities' bCheckAddAxVelJump).
   check_.checkAddAxVelJump = true;

@@ -39,7 +39,9 @@ public:
   static constexpr size_t kWindow = 32;   // decoded elements held ahead of the interpolator
 
   // `text` is copied; `name` is what diagnostics show (file:line:col).
-  ProgramWindow(std::string name, std::string text, const cnc::DecoderOptions& opts, const PathLimits& limits);
+  // `vars` resolves the program's $name$ (null: a $name$ is an error).
+  ProgramWindow(std::string name, std::string text, const cnc::DecoderOptions& opts, const PathLimits& limits,
+                std::unique_ptr<cnc::VariableAccess> vars);
   ProgramWindow(const ProgramWindow&) = delete;
   ProgramWindow& operator=(const ProgramWindow&) = delete;
 
@@ -74,6 +76,7 @@ private:
   uint32_t file_ = 0;
   PathLimits limits_;
   cnc::VelocityCheckOptions check_;
+  std::unique_ptr<cnc::VariableAccess> vars_;   // before decoder_: it outlives it
   std::unique_ptr<cnc::Decoder> decoder_;
   cnc::ElementQueue staging_{8};     // the decoder's output before the checks
   std::vector<cnc::Element> window_;   // [head_, size): decoded, not taken; the first checked_ are final
