@@ -34,12 +34,15 @@ std::unique_ptr<vm::NativeSession> MotionLibrary::newSession() const { return st
 
 bool MotionLibrary::readProject(const std::string& dir, const std::vector<std::string>& libraries, std::string& error) {
   return checkProjectToml(dir, error) && loadProjectDataDir(dir, cfg_.filesDir, error) && loadProjectAxes(dir, cfg_.axes, error, &cfg_.axisWhere) &&
-         loadProjectIo(dir, cfg_.io, error) && loadProjectCams(dir, cfg_.cams, error) && loadProjectGroups(dir, cfg_.groups, error) &&
+         loadProjectIo(dir, cfg_.io, error) && loadProjectCams(dir, cfg_.cams, error) && loadProjectCncPrograms(dir, cfg_.cncPrograms, error) &&
+         loadProjectGroups(dir, cfg_.groups, error) &&
          loadProjectVendorProfile(dir, libraries, cfg_.profile, error);
 }
 
 MotionSession::MotionSession(const MotionLibrary& lib, const MotionConfig& cfg) : lib_(lib), cfg_(cfg) {
   kernel.profile = cfg_.profile;
+  // Each controller its own copy of the held programs: ST may write through pText.
+  for (CncProgramConfig& c : cfg_.cncPrograms) c.text = std::make_shared<const std::string>(*c.text);
 }
 
 MotionSession::~MotionSession() {
@@ -77,6 +80,19 @@ bool MotionSession::start(const vm::StartCtx& sc, std::string& error) {
     const uint64_t id = cams.nextId++;
     cams.held[id] = cc.cam;
     f->bound(var, *cc.cam, id);
+  }
+  // The programs of project.toml into their SMC_CNC_REF variables.
+  for (const CncProgramConfig& pc : cfg_.cncPrograms) {
+    std::string type;
+    void* var = sc.lookup(pc.var, type);
+    const auto& pf = lib_.cncProgramFaces();
+    auto f = std::find_if(pf.begin(), pf.end(), [&](const CncProgramFace& p) { return p.typeName == type; });
+    if (!var || f == pf.end()) {
+      error = "project.toml: cnc_program '" + pc.var + "' has no program variable of that name (declare it, e.g. '" + pc.var +
+              " : SMC_CNC_REF;' in a VAR_GLOBAL, with the library codesys_sm3 or leadshine)";
+      return false;
+    }
+    f->bound(var, pc);
   }
   for (const AxisConfig& cfg : cfg_.axes) {
     std::string type;

@@ -36,6 +36,16 @@ struct CamConfig {
   std::shared_ptr<const Cam> cam;
 };
 
+// A G-code program compiled into the project ([[cnc_program]], docs/cnc.md, "Programs in
+// the project"): its text is held by the controller and an SMC_CNC_REF points to it.
+struct CncProgramConfig {
+  std::string var;                              // the SMC_CNC_REF variable
+  std::string name;                             // the file as written (diagnostics)
+  std::shared_ptr<const std::string> text;
+  double defaultVel = 0, defaultAccel = 0, defaultDecel = 0;
+  double defaultVelFF = 0, defaultAccelFF = 0, defaultDecelFF = 0;
+};
+
 // An axis group configured in project.toml ([[group]], docs/motion-groups.md): its
 // AXIS_GROUP_REF_SM3 variable and its member axes' variables, in order.
 struct GroupConfig {
@@ -56,6 +66,7 @@ struct MotionConfig {
   std::vector<GroupConfig> groups; // [[group]]
   std::vector<IoDevice> io;        // [[io]]
   std::vector<CamConfig> cams;     // [[cam]]
+  std::vector<CncProgramConfig> cncPrograms;   // [[cnc_program]]
   VendorProfile profile;           // [project] motion_profile, else by the libraries used
   // The data directory: where the files a program opens live (SMC_ReadCAM, SMC_WriteCAM,
   // SMC_AxisDiagnosticLog.WriteToFile; they never leave it, vm/FileSandbox.h).  A project's
@@ -82,6 +93,12 @@ struct CamFace {
   void (*bound)(void* var, const Cam& cam, uint64_t id) = nullptr;
 };
 
+// How a face fills a program variable of its type (SMC_CNC_REF) with a held program.
+struct CncProgramFace {
+  std::string typeName;
+  void (*bound)(void* var, const CncProgramConfig& program) = nullptr;
+};
+
 // The motion library as the controller sees it: the natives of every face
 // (codesys_sm3, leadshine) and, per controller, a MotionSession.
 class MotionLibrary : public vm::NativeLibrary {
@@ -106,12 +123,15 @@ public:
   void addGroupFace(GroupFace f) { groupFaces_.push_back(std::move(f)); }
   const std::vector<GroupFace>& groupFaces() const { return groupFaces_; }
   const std::vector<CamFace>& camFaces() const { return camFaces_; }
+  void addCncProgramFace(CncProgramFace f) { cncProgramFaces_.push_back(std::move(f)); }
+  const std::vector<CncProgramFace>& cncProgramFaces() const { return cncProgramFaces_; }
 
 private:
   MotionConfig cfg_;
   std::vector<vm::NativeEntry> natives_;
   std::vector<AxisFace> faces_;
   std::vector<CamFace> camFaces_;
+  std::vector<CncProgramFace> cncProgramFaces_;
   std::vector<GroupFace> groupFaces_;
 };
 
@@ -177,6 +197,15 @@ public:
     return b && b >= imageBegin_ && b <= imageEnd_ && bytes <= static_cast<uint64_t>(imageEnd_ - b);
   }
   const std::string& filesDir() const { return cfg_.filesDir; }
+  // Whether [p, p + bytes) lies in the text of a program the controller holds ([[cnc_program]]).
+  bool inHeldProgram(const void* p, uint64_t bytes) const {
+    const auto* b = static_cast<const char*>(p);
+    for (const CncProgramConfig& c : cfg_.cncPrograms) {
+      const char* t = c.text->data();
+      if (b >= t && b <= t + c.text->size() && bytes <= static_cast<uint64_t>(t + c.text->size() - b)) return true;
+    }
+    return false;
+  }
   // A variable of the program by name (`x`, `GVL.x`, `arr[2]`, `MAIN.fb.q`), for G-code
   // $name$ while the run goes (vm::StartCtx::lookupVariable).  False with `error` if none.
   bool findVariable(const std::string& path, vm::StartCtx::Variable& out, std::string& error) const {
@@ -248,6 +277,8 @@ bool loadProjectIo(const std::string& dir, std::vector<IoDevice>& out, std::stri
 bool loadProjectGroups(const std::string& dir, std::vector<GroupConfig>& out, std::string& error);
 // The [[cam]] tables of dir/project.toml (ProjectCams.cpp).
 bool loadProjectCams(const std::string& dir, std::vector<CamConfig>& out, std::string& error);
+// The [[cnc_program]] tables (ProjectCnc.cpp): each file read (inside the project, at most 64 MiB).
+bool loadProjectCncPrograms(const std::string& dir, std::vector<CncProgramConfig>& out, std::string& error);
 // The largest file a program or project.toml may have read (cam files).
 inline constexpr uint64_t kMaxProjectFileBytes = 64ull * 1024 * 1024;
 // ProjectIo.cpp: binds the devices at start; evaluates them after each task slot.

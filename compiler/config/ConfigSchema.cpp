@@ -526,11 +526,15 @@ const Schema& projectSchema() {
                           {},
                           {},
                           {{"file", "xyva", "table1d", "table2d", "segments"}}};
+  static const Schema cncProgram{"[[cnc_program]]",
+                                 {required(kind("var", Kind::VarPath)), required([] { Field f = str("file"); f.nonEmpty = true; return f; }()),
+                                  num("default_vel", 0, kVel), num("default_accel", 0, kAcc), num("default_decel", 0, kAcc),
+                                  num("default_vel_ff", 0, kVel), num("default_accel_ff", 0, kAcc), num("default_decel_ff", 0, kAcc)}};
   static const Schema root{"project.toml",
                            {[] { Field f{"project", Kind::Table}; f.schema = &project; return f; }(),
                             [] { Field f{"build", Kind::Table}; f.schema = &build; return f; }(), tables("task", task, "name"),
                             tables("axis", axis, "name"), tables("group", group, "name"), tables("io", io, "var"),
-                            tables("cam", cam, "var")}};
+                            tables("cam", cam, "var"), tables("cnc_program", cncProgram, "var")}};
   return root;
 }
 

@@ -139,7 +139,22 @@ bool Compilation::addPath(const std::string& path) {
     for (const fs::directory_entry& e : fs::directory_iterator(fs::path(path) / "nc", ec))
       if (e.is_regular_file(ec) && isGCodeFile(e.path())) nc.push_back(e.path().string());
     std::sort(nc.begin(), nc.end());
+    const size_t before = gcodeFiles_.size();
     for (const std::string& s : nc) ok = addPath(s) && ok;
+    // [[cnc_program]] files: G-code whatever their extension, decoded with their defaults.
+    for (const ProjectConfig::CncProgram& p : pc.cncPrograms) {
+      uint32_t id = 0;
+      for (size_t i = before; i < gcodeFiles_.size() && !id; ++i)
+        if (fs::equivalent(fs::path(p.path), fs::path(sm_.file(gcodeFiles_[i]).path), ec)) id = gcodeFiles_[i];
+      std::string error;
+      if (!id && (id = sm_.loadFile(p.path, error)) != 0) gcodeFiles_.push_back(id);
+      if (!id) {
+        diags_.error(SourceLoc{}, p.path + ": " + error, "input");
+        ok = false;
+        continue;
+      }
+      gcodeDefaults_.emplace_back(id, p);
+    }
     if (!pc.tasksSource.empty()) {
       addBuffer((fs::path(path) / "project.toml [[task]]").string(), pc.tasksSource);
       tasksFile_ = files_.back();
@@ -207,7 +222,17 @@ void Compilation::checkGCode() {
   for (uint32_t file : gcodeFiles_) {
     DiagnosticsEngine d(sm_);
     d.opts.errorLimit = 0;
-    cnc::decodeAll(sm_, file, d, cnc::DecoderOptions{}, &vars);
+    cnc::DecoderOptions o;
+    for (const auto& [id, p] : gcodeDefaults_)
+      if (id == file) {
+        o.defaultVel = p.vel;
+        o.defaultAcc = p.acc;
+        o.defaultDec = p.dec;
+        o.defaultRapidVel = p.velFF;
+        o.defaultRapidAcc = p.accFF;
+        o.defaultRapidDec = p.decFF;
+      }
+    cnc::decodeAll(sm_, file, d, o, &vars);
     const std::string_view text = sm_.file(file).text;
     for (const Diagnostic& g : d.diagnostics()) {
       // In a block with $variables$ only the syntax and the names can be checked now.

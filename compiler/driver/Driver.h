@@ -29,6 +29,13 @@ struct ProjectConfig {
   // [[task]] tables: the CONFIGURATION they stand for, as ST ("" = none; tasks come from the sources).
   std::string tasksSource;
   std::string tasksWhere;                // "dir/project.toml:L:C" of the first [[task]]
+  // [[cnc_program]] files (inside the project): stc check decodes them too, with the defaults
+  // the controller gives them (F/E/E- and FF/EF/EF- until the program sets them).
+  struct CncProgram {
+    std::string path;
+    double vel = 0, acc = 0, dec = 0, velFF = 0, accFF = 0, decFF = 0;
+  };
+  std::vector<CncProgram> cncPrograms;
 };
 
 // The names of the optional libraries built into the compiler.
@@ -92,6 +99,7 @@ private:
   std::unique_ptr<sema::Sema> sema_;
   std::vector<uint32_t> files_;
   std::vector<uint32_t> gcodeFiles_;
+  std::vector<std::pair<uint32_t, ProjectConfig::CncProgram>> gcodeDefaults_;   // [[cnc_program]] files
   void checkGCode();
   struct Imports;                       // what the XML importers found (Driver.cpp)
   std::unique_ptr<Imports> imports_;

@@ -97,6 +97,17 @@ bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error)
     }
     out.tasksSource = text + programs + "  END_RESOURCE\nEND_CONFIGURATION\n";
   }
+  // [[cnc_program]] files that stay inside the project (the run refuses the others, with why).
+  if (const toml::array* progs = tbl["cnc_program"].as_array())
+    for (const toml::node& n : *progs)
+      if (auto f = n.as_table() ? (*n.as_table())["file"].value<std::string>() : std::nullopt) {
+        const fs::path rel = fs::path(*f).lexically_normal();
+        if (rel.is_absolute() || rel.empty() || *rel.begin() == "..") continue;
+        const toml::table& t = *n.as_table();
+        out.cncPrograms.push_back({(root / rel).string(), t["default_vel"].value_or(0.0), t["default_accel"].value_or(0.0),
+                                   t["default_decel"].value_or(0.0), t["default_vel_ff"].value_or(0.0),
+                                   t["default_accel_ff"].value_or(0.0), t["default_decel_ff"].value_or(0.0)});
+      }
   fs::path src = root / "src";
   std::error_code ec;
   if (fs::is_directory(src, ec)) {

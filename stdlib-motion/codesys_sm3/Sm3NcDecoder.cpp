@@ -260,11 +260,28 @@ void SMC_NCDecoder(sm3::SMC_NCDecoder* self) {
   }
 }
 
+// A [[cnc_program]] of project.toml into its SMC_CNC_REF: the text stays with the controller.
+void bindHeldProgram(void* var, const CncProgramConfig& c) {
+  auto& p = *static_cast<sm3::SMC_CNC_REF*>(var);
+  p.wCNCREFStructID = kCncRefStructId;
+  p.pText = const_cast<char*>(c.text->data());
+  p.dwTextSize = static_cast<uint32_t>(c.text->size());
+  putString(p.strFileName, c.name);
+  p.fDefaultVel = c.defaultVel;
+  p.fDefaultAccel = c.defaultAccel;
+  p.fDefaultDecel = c.defaultDecel;
+  p.fDefaultVelFF = c.defaultVelFF;
+  p.fDefaultAccelFF = c.defaultAccelFF;
+  p.fDefaultDecelFF = c.defaultDecelFF;
+  p.pvl = nullptr;
+}
+
 }  // namespace
 
 namespace stc::motion::sm3face {
 void registerSm3NcNatives(MotionLibrary& lib) {
   STC_SM3_NATIVE(SMC_ReadNCFile, SMC_ReadNCFile)
   STC_SM3_NATIVE(SMC_NCDecoder, SMC_NCDecoder)
+  lib.addCncProgramFace({"SMC_CNC_REF", &bindHeldProgram});
 }
 }  // namespace stc::motion::sm3face

@@ -15,7 +15,7 @@ namespace stc::motion::sm3face {
 
 bool usableCncRef(const MotionSession& s, const sm3::SMC_CNC_REF* p) {
   return p && s.inImage(p, sizeof *p) && p->wCNCREFStructID == kCncRefStructId && p->dwTextSize <= kMaxNcProgramBytes &&
-         (p->dwTextSize == 0 || s.inImage(p->pText, p->dwTextSize));
+         (p->dwTextSize == 0 || s.inImage(p->pText, p->dwTextSize) || s.inHeldProgram(p->pText, p->dwTextSize));
 }
 
 NcFileRead readNcFile(const MotionSession& s, const std::string& name, uint64_t maxBytes, std::string& text, uint64_t& size) {

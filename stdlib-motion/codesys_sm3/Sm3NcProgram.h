@@ -21,7 +21,8 @@ inline constexpr uint16_t kCncRefStructId = 0xBA56;        // SMC_CNC_REF.wCNCRE
 inline constexpr uint64_t kMaxNcProgramBytes = 64ull << 20;   // the largest program text
 
 // TRUE when `p` is an SMC_CNC_REF in static memory with the struct ID, a text of at most
-// kMaxNcProgramBytes, and that text in static memory too (never a stack frame).
+// kMaxNcProgramBytes, and that text in static memory too (never a stack frame) or in a
+// program the controller holds ([[cnc_program]] of project.toml).
 bool usableCncRef(const MotionSession& s, const sm3::SMC_CNC_REF* p);
 
 enum class NcFileRead { Ok, Missing, TooBig };

@@ -79,7 +79,7 @@ dialect = "codesis"'
 dialect = 3'
   expect wrong-type 1 "\[build\] dialect = 3: a string is expected" -- "$STC" check "$TMP/type"
   project unknown <<<'colour = "red"'
-  expect unknown-no-hint 1 "unknown key 'colour' in project.toml \(known keys: project, build, task, axis, group, io, cam\)" -- "$STC" check "$TMP/unknown"
+  expect unknown-no-hint 1 "unknown key 'colour' in project.toml \(known keys: project, build, task, axis, group, io, cam, cnc_program\)" -- "$STC" check "$TMP/unknown"
   project libs <<<'[project]
 libraries = ["codesys_sm"]'
   expect library-typo 1 "unknown library 'codesys_sm'.*did you mean 'codesys_sm3'\?" -- "$STC" check "$TMP/libs"
