@@ -386,6 +386,17 @@ bool resolvePath(const codegen::ImageMap& map, const sema::Layout& layout, const
     if (!segs[k].idx.empty()) break;
   }
   if (!root) {
+    // `GVL.Vell`: GVL is a namespace of roots (a GVL, a namespace), so the name after it is the
+    // one that is wrong and the hint comes from that namespace.
+    const std::string prefix = asciiUpper(segs[0].name) + ".";
+    std::vector<std::string> inside;
+    for (const auto& r : map.roots)
+      if (asciiUpper(r.path).compare(0, prefix.size(), prefix) == 0) inside.push_back(r.path);
+    if (segs.size() >= 2 && !inside.empty()) {
+      std::string hint = closest(segs[0].name + "." + segs[1].name, inside);
+      error = "'" + segs[0].name + "' has no variable named '" + segs[1].name + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?");
+      return false;
+    }
     std::vector<std::string> names;
     for (const auto& r : map.roots) names.push_back(r.path);
     std::string hint = closest(segs[0].name, names);

@@ -1,4 +1,5 @@
 #include "driver/Driver.h"
+#include "driver/DeclaredNames.h"
 #include "stdlib-motion/cnc/Decoder.h"
 #include "config/ConfigSchema.h"
 #include "sema/Model.h"
@@ -6,6 +7,7 @@
 #include <pthread.h>
 
 #include <algorithm>
+#include <cstring>
 #include <atomic>
 #include <cctype>
 #include <chrono>
@@ -128,6 +130,7 @@ bool Compilation::addPath(const std::string& path) {
       projectError(error);
       return false;
     }
+    projectDirs_.push_back(path);
     if (pc.dialect) projectDialect_ = pc.dialect;
     if (pc.addressBits) projectAddressBits_ = pc.addressBits;
     projectDefines_.insert(projectDefines_.end(), pc.defines.begin(), pc.defines.end());
@@ -156,7 +159,16 @@ bool Compilation::addPath(const std::string& path) {
       gcodeDefaults_.emplace_back(id, p);
     }
     if (!pc.tasksSource.empty()) {
-      addBuffer((fs::path(path) / "project.toml [[task]]").string(), pc.tasksSource);
+      // The generated CONFIGURATION reports its errors at the [[task]] tables it comes from.
+      std::string why;
+      const uint32_t manifest = sm_.loadFile(pc.manifest, why);
+      if (manifest) {
+        std::vector<SourceSegment> segs = pc.tasksSegments;
+        for (SourceSegment& g : segs) g.file = manifest;
+        files_.push_back(sm_.addGenerated((fs::path(path) / "project.toml [[task]]").string(), pc.tasksSource, std::move(segs)));
+      } else {
+        addBuffer((fs::path(path) / "project.toml [[task]]").string(), pc.tasksSource);
+      }
       tasksFile_ = files_.back();
       tasksWhere_ = pc.tasksWhere;
     }
@@ -180,40 +192,16 @@ namespace {
 // reads as 0 here and the geometry of a block with variables is left to the decoder then.
 class CheckedVariables : public cnc::VariableAccess {
 public:
-  explicit CheckedVariables(ast::ASTContext& ast) {
-    for (const ast::SourceUnit& u : ast.units())
-      for (const ast::Decl* d : u.decls) {
-        if (auto* g = ast::dyn_cast<ast::GlobalVarDecl>(d)) {
-          for (const ast::VarDecl* v : g->block.vars) {
-            names_.insert(asciiLower(v->name.name));
-            spelled_.push_back(v->name.name);
-            if (!g->listName.name.empty()) names_.insert(asciiLower(g->listName.name + "." + v->name.name));
-          }
-        } else if (auto* p = ast::dyn_cast<ast::PouDecl>(d); p && p->pouKind == ast::PouKind::Program) {
-          programs_.insert(asciiLower(p->name.str()));
-        }
-      }
-  }
+  explicit CheckedVariables(ast::ASTContext& ast) : names_(ast) {}
   bool read(std::string_view name, double& v) override {
     v = 0;
-    return known(name);
+    return names_.known(name);
   }
-  bool write(std::string_view name, double) override { return known(name); }
-  std::string suggest(std::string_view name) override { return closestMatch(name, spelled_); }
+  bool write(std::string_view name, double) override { return names_.known(name); }
+  std::string suggest(std::string_view name) override { return names_.closest(name); }
 
 private:
-  // The root of the name (before an index or a member) is a global, GVL.global or a PROGRAM.
-  bool known(std::string_view name) const {
-    const std::string n = asciiLower(std::string(name.substr(0, name.find('['))));
-    const size_t dot = n.find('.');
-    if (names_.count(n) || names_.count(n.substr(0, dot))) return true;
-    if (dot == std::string::npos) return false;
-    if (programs_.count(n.substr(0, dot))) return true;
-    return names_.count(n.substr(0, n.find('.', dot + 1))) != 0;   // GVL.x.member
-  }
-  std::set<std::string> names_;
-  std::set<std::string> programs_;
-  std::vector<std::string> spelled_;   // as declared
+  DeclaredNames names_;
 };
 }  // namespace
 
@@ -307,6 +295,26 @@ bool namesAny(const std::string& message, const std::set<std::string>& names) {
   }
   return false;
 }
+
+namespace {
+// Whether the ST text declares `upper` (upper case) as a TYPE, FUNCTION_BLOCK, FUNCTION,
+// INTERFACE or PROGRAM: the keyword, blanks, the name, then no name character.
+bool declaresName(std::string_view text, const std::string& upper) {
+  const std::string t = asciiUpper(std::string(text));
+  for (const char* kw : {"TYPE ", "FUNCTION_BLOCK ", "FUNCTION ", "INTERFACE ", "PROGRAM "}) {
+    for (size_t at = t.find(kw); at != std::string::npos; at = t.find(kw, at + 1)) {
+      if (at > 0 && (std::isalnum(static_cast<unsigned char>(t[at - 1])) || t[at - 1] == '_')) continue;
+      size_t b = at + std::strlen(kw);
+      while (b < t.size() && (t[b] == ' ' || t[b] == '\t')) ++b;
+      if (t.compare(b, upper.size(), upper) != 0) continue;
+      const size_t e = b + upper.size();
+      if (e < t.size() && (std::isalnum(static_cast<unsigned char>(t[e])) || t[e] == '_')) continue;
+      return true;
+    }
+  }
+  return false;
+}
+}  // namespace
 
 bool Compilation::check(const CompileOptions& opts) {
   using clock = std::chrono::steady_clock;
@@ -436,6 +444,15 @@ bool Compilation::check(const CompileOptions& opts) {
   sema::SemaOptions so;
   so.dialect = dialect_;
   so.addressBits = addressBits_;
+  // "unknown type 'AXIS_REF_SM3'": which optional library, not compiled in, declares it.
+  so.libraryOf = [libs](const std::string& name) -> std::string {
+    const std::string up = asciiUpper(name);
+    for (size_t i = 0; i < kLibrarySourceCount; ++i) {
+      if (std::find(libs.begin(), libs.end(), kLibrarySources[i].library) != libs.end()) continue;
+      if (declaresName(kLibrarySources[i].text, up)) return kLibrarySources[i].library;
+    }
+    return {};
+  };
   if (!parsed) {
     // Like clang, go on after syntax errors: the declarations that parsed
     // cleanly are checked, so one run reports the missing ';' and the
@@ -450,12 +467,14 @@ bool Compilation::check(const CompileOptions& opts) {
       if (!((d.code == "undeclared-name" || d.code == "unknown-type") && namesAny(d.message, dropped))) diags_.commit(d);
     stats_.semaSeconds = std::chrono::duration<double>(clock::now() - t1).count();
     checkGCode();
+    if (opts.checkProjectFiles) checkProjectFiles();
     return false;
   }
   sema_ = std::make_unique<sema::Sema>(*ast_, diags_, so);
   bool ok = sema_->run();
   stats_.semaSeconds = std::chrono::duration<double>(clock::now() - t1).count();
   checkGCode();
+  if (opts.checkProjectFiles) checkProjectFiles();
   return ok && !diags_.hasErrors();
 }
 

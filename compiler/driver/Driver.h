@@ -29,6 +29,10 @@ struct ProjectConfig {
   // [[task]] tables: the CONFIGURATION they stand for, as ST ("" = none; tasks come from the sources).
   std::string tasksSource;
   std::string tasksWhere;                // "dir/project.toml:L:C" of the first [[task]]
+  // Where each piece of tasksSource comes from in project.toml (SourceSegment::file is 0:
+  // the loader fills in project.toml's id), so diagnostics point at what the user wrote.
+  std::vector<SourceSegment> tasksSegments;
+  std::string manifest;                  // dir/project.toml
   // [[cnc_program]] files (inside the project): stc check decodes them too, with the defaults
   // the controller gives them (F/E/E- and FF/EF/EF- until the program sets them).
   struct CncProgram {
@@ -49,6 +53,8 @@ struct CompileOptions {
   std::optional<unsigned> addressBits;   // 32 or 64; overrides the project's (default 32)
   std::set<std::string> defines;         // lower-case
   bool includeStdlib = true;             // the IEC standard FB declarations
+  // stc check: also the names project.toml tables and scenarios give (ProjectCheck.cpp).
+  bool checkProjectFiles = false;
   // Declarations of native libraries (name, ST text) compiled in before the inputs.
   std::vector<std::pair<std::string, std::string>> libraries;
   // Optional libraries of stdlib-motion/ by name (--lib), besides the project's.
@@ -101,6 +107,8 @@ private:
   std::vector<uint32_t> gcodeFiles_;
   std::vector<std::pair<uint32_t, ProjectConfig::CncProgram>> gcodeDefaults_;   // [[cnc_program]] files
   void checkGCode();
+  void checkProjectFiles();             // ProjectCheck.cpp
+  std::vector<std::string> projectDirs_;
   struct Imports;                       // what the XML importers found (Driver.cpp)
   std::unique_ptr<Imports> imports_;
   bool addImported(const std::string& path);

@@ -1,6 +1,8 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <toml++/toml.h>
 
 #include "config/ConfigSchema.h"
@@ -64,8 +66,32 @@ bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error)
   // integer, so no value can add text of its own.
   if (const toml::array* tasks = tbl["task"].as_array(); tasks && !tasks->empty()) {
     out.tasksWhere = config::where(manifest.string(), *tasks->get(0));
+    out.manifest = manifest.string();
+    // Byte offsets of nodes in project.toml, for the segments of the generated text.
+    std::string toml;
+    {
+      std::ifstream in(manifest, std::ios::binary);
+      toml.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    std::vector<uint32_t> lineStart{0};
+    for (uint32_t i = 0; i < toml.size(); ++i)
+      if (toml[i] == '\n') lineStart.push_back(i + 1);
+    auto offsetOf = [&](const toml::node& n) -> uint32_t {
+      const auto& b = n.source().begin;
+      if (b.line == 0 || b.line > lineStart.size()) return 0;
+      return std::min<uint32_t>(lineStart[b.line - 1] + (b.column ? b.column - 1 : 0), static_cast<uint32_t>(toml.size()));
+    };
     std::string text = "CONFIGURATION __project\n  RESOURCE __cpu ON PLC\n";
     std::string programs;
+    std::vector<SourceSegment> progSegs;
+    out.tasksSegments.push_back({0, 0, offsetOf(*tasks->get(0)), false});
+    // A name written into the generated text maps byte for byte onto the string in
+    // project.toml (after its opening quote); what follows maps to `rest`.
+    auto name = [](std::string& into, std::vector<SourceSegment>& segs, const std::string& s, uint32_t quote, uint32_t base, uint32_t rest) {
+      segs.push_back({base + static_cast<uint32_t>(into.size()), 0, quote + 1, true});
+      into += s;
+      segs.push_back({base + static_cast<uint32_t>(into.size()), 0, rest, false});
+    };
     // A keyword is an ST name to the schema but not to the parser: refused here,
     // at its place in project.toml, instead of as a syntax error in the generated text.
     auto reserved = [&](const toml::node& v, const char* what) {
@@ -77,7 +103,7 @@ bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error)
     };
     for (const toml::node& n : *tasks) {
       const toml::table& t = *n.as_table();
-      const std::string name = *t["name"].value<std::string>();
+      const std::string taskName = *t["name"].value<std::string>();
       if (reserved(*t["name"].node(), "name")) return false;
       for (const toml::node& p : *t["programs"].as_array())
         if (reserved(p, "programs")) return false;
@@ -89,12 +115,28 @@ bool loadProject(const std::string& dir, ProjectConfig& out, std::string& error)
       } else {
         kind = "SINGLE := " + *t["event"].value<std::string>();
       }
-      text += "    TASK " + name + "(" + kind + ", PRIORITY := " + std::to_string(t["priority"].value_or<int64_t>(0)) + ");\n";
+      const uint32_t table = offsetOf(n), nameAt = offsetOf(*t["name"].node());
+      text += "    TASK ";
+      name(text, out.tasksSegments, taskName, nameAt, 0, table);
+      text += "(" + kind + ", PRIORITY := " + std::to_string(t["priority"].value_or<int64_t>(0)) + ");\n";
       for (const toml::node& p : *t["programs"].as_array()) {
         const std::string prog = *p.value<std::string>();
-        programs += "    PROGRAM " + prog + " WITH " + name + " : " + prog + ";\n";
+        const uint32_t at = offsetOf(p);
+        programs += "    PROGRAM ";
+        name(programs, progSegs, prog, at, 0, at);
+        programs += " WITH ";
+        name(programs, progSegs, taskName, nameAt, 0, at);
+        programs += " : ";
+        name(programs, progSegs, prog, at, 0, at);
+        programs += ";\n";
       }
     }
+    // The program lines follow the task lines: their segments move by the task text's length.
+    for (SourceSegment s : progSegs) {
+      s.genBegin += static_cast<uint32_t>(text.size());
+      out.tasksSegments.push_back(s);
+    }
+    out.tasksSegments.push_back({static_cast<uint32_t>(text.size() + programs.size()), 0, offsetOf(*tasks->get(0)), false});
     out.tasksSource = text + programs + "  END_RESOURCE\nEND_CONFIGURATION\n";
   }
   // [[cnc_program]] files that stay inside the project (the run refuses the others, with why).

@@ -2,6 +2,9 @@
 // Runs over every SourceUnit of an ASTContext, annotating the AST in place.
 #pragma once
 
+#include <functional>
+#include <string>
+
 #include <memory>
 
 #include "ast/AST.h"
@@ -15,6 +18,9 @@ struct SemaOptions {
   // The address model: 32 = POINTER TO / REF_TO / REFERENCE TO take 4 bytes and the
   // program's memory lies below 4 GiB, as on a 32-bit controller (docs/dialect.md).
   unsigned addressBits = 32;
+  // The optional library (not compiled in) that declares an unknown type or program name,
+  // for the hint "add the library"; empty: none.  May be unset.
+  std::function<std::string(const std::string& name)> libraryOf;
 };
 
 class SemaImpl;

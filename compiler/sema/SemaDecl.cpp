@@ -381,8 +381,20 @@ Symbol* SemaImpl::lookupQualified(const QualifiedName& q, Scope* from, bool repo
     }
     s = next;
   }
-  if (!s && report)
-    diags_.error(q.range.begin, "unknown " + std::string(what) + " '" + q.str() + "'", "undeclared-name").range(q.range);
+  if (!s && report) {
+    // A program named in a task: the hint comes from the PROGRAMs.
+    std::string hint;
+    if (q.parts.size() == 1 && std::string(what) == "program") {
+      std::vector<std::string> programs;
+      for (Symbol* p : pous_)
+        if (p->kind == Symbol::Program) programs.push_back(p->name);
+      hint = closestMatch(q.parts[0].name, programs);
+    }
+    auto d = diags_.error(q.range.begin, "unknown " + std::string(what) + " '" + q.str() + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"),
+                          "undeclared-name");
+    d.range(q.range);
+    if (!hint.empty()) d.fixit(q.range, hint);
+  }
   return s;
 }
 
@@ -444,11 +456,15 @@ const Type* SemaImpl::resolveNamedType(const QualifiedName& q, const Context& ct
     for (Symbol* t : typeSymbols_) cands.push_back(t->name);
     for (Symbol* p : pous_)
       if (p->kind == Symbol::FunctionBlock || p->kind == Symbol::Interface) cands.push_back(p->name);
-    std::string hint = q.parts.size() == 1 ? closestMatch(q.parts[0].name, cands) : "";
+    const std::string lib = opts_.libraryOf && q.parts.size() == 1 ? opts_.libraryOf(q.parts[0].name) : std::string();
+    std::string hint = q.parts.size() == 1 && lib.empty() ? closestMatch(q.parts[0].name, cands) : "";
     auto d = diags_.error(q.range.begin, "unknown type '" + q.str() + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"),
                           "unknown-type");
     d.range(q.range);
     if (!hint.empty()) d.fixit(q.range, hint);
+    if (!lib.empty())
+      d.note(q.range.begin, "'" + q.str() + "' is declared by the library '" + lib + "': add it to [project] libraries in project.toml (or give --lib " +
+                                lib + ")");
   }
   return types_.error();
 }

@@ -9,5 +9,5 @@ if [ "$1" != "--" ]; then pattern=$1; shift; fi
 shift
 out=$("$@" 2>&1); rc=$?
 if [ "$rc" -ne "$code" ]; then echo "exit status $rc, expected $code"; echo "$out" | tail -20; exit 1; fi
-if [ -n "$pattern" ] && ! grep -Eq "$pattern" <<< "$out"; then echo "output does not match /$pattern/:"; echo "$out" | tail -20; exit 1; fi
+if [ -n "$pattern" ] && ! grep -Eq -e "$pattern" <<< "$out"; then echo "output does not match /$pattern/:"; echo "$out" | tail -20; exit 1; fi
 exit 0

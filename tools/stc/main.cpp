@@ -93,7 +93,9 @@ bool checkInputs(Compilation& c, const CheckArgs& a) {
   bool inputsOk = true;
   for (const std::string& p : a.paths) inputsOk = c.addPath(p) && inputsOk;
   bool ok = false;
-  if (inputsOk) runWithLargeStack([&] { ok = c.check(compileOptions(a)); });
+  CompileOptions o = compileOptions(a);
+  o.checkProjectFiles = true;
+  if (inputsOk) runWithLargeStack([&] { ok = c.check(o); });
   return ok;
 }
 
@@ -351,6 +353,10 @@ int runRun(const BuildArgs& a) {
   }
   if (!ro.traces.empty() && ro.traceOut.empty()) {
     std::cerr << "stc: error: --trace needs --trace-out FILE.csv|FILE.vcd (or --plot FILE.svg)\n";
+    return 2;
+  }
+  if (ro.traces.empty() && !a.traceOut.empty()) {   // else the file would silently not be written
+    std::cerr << "stc: error: --trace-out needs --trace VAR,... (the variables to record)\n";
     return 2;
   }
   // The axes, devices and vendor profile that project directories configure (project.toml).
