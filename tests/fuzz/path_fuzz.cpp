@@ -83,9 +83,31 @@ constexpr double kGeoTol = 1e-7;
 
 const char* g_stage = "";
 size_t g_index = 0;
+const Element* g_element = nullptr;   // the element being checked, if any
+const std::vector<Element>* g_before = nullptr;   // the elements of its stream before it
+
+void dump(const Element& e) {
+  std::fprintf(stderr, "  line %d type %s start", e.line, toString(e.type));
+  for (double v : e.start) std::fprintf(stderr, " %.17g", v);
+  std::fprintf(stderr, "\n  end");
+  for (double v : e.end) std::fprintf(stderr, " %.17g", v);
+  std::fprintf(stderr, "\n  length %.17g vel %g acc %g dec %g velEnd %g\n", e.length, e.vel, e.acc, e.dec, e.velEnd);
+  if (e.type == MoveType::Clw || e.type == MoveType::Cclw) {
+    const ArcGeo& g = e.arc;
+    std::fprintf(stderr, "  arc centre %.17g %.17g %.17g radius %.17g startAngle %.17g sweep %.17g rise %.17g\n", g.centre[0],
+                 g.centre[1], g.centre[2], g.radius, g.startAngle, g.sweep, g.rise);
+    std::fprintf(stderr, "  u %g %g %g v %g %g %g normal %g %g %g\n", g.u[0], g.u[1], g.u[2], g.v[0], g.v[1], g.v[2],
+                 g.normal[0], g.normal[1], g.normal[2]);
+  }
+}
 
 [[noreturn]] void violated(const char* what) {
   std::fprintf(stderr, "path_fuzz: invariant violated after %s, element %zu: %s\n", g_stage, g_index, what);
+  if (g_element) dump(*g_element);
+  if (g_before && std::getenv("STC_PATH_FUZZ_VERBOSE")) {
+    std::fprintf(stderr, "after:\n");
+    for (size_t i = g_before->size() > 4 ? g_before->size() - 4 : 0; i < g_before->size(); ++i) dump((*g_before)[i]);
+  }
   std::abort();
 }
 #define CHECK(cond)                   \
@@ -171,6 +193,8 @@ struct Stream {
   void accept(const Element& e) {
     g_stage = name;
     g_index = els.size();
+    g_element = &e;
+    g_before = &els;
     checkElement(e);
     if (!els.empty()) {
       const Pos& prev = els.back().end;
@@ -179,6 +203,8 @@ struct Stream {
         CHECK(std::fabs(e.start[k] - prev[k]) <= kJoinTol * scale);
       }
     }
+    g_element = nullptr;
+    g_before = nullptr;
     els.push_back(e);
   }
 };
@@ -253,6 +279,21 @@ public:
     CHECK(sm_.stream().size() <= la_.stream().size() + sm_.corners());
     if (!cvStopped_) CHECK(cv_.els.size() == sm_.stream().size());
     CHECK(cv_.els.size() <= 6 * dec_.els.size() + 2);
+    // ToolCorr keeps every element it accepted (in order; inserted elements carry the number
+    // of the element they belong to): no programmed element is lost.
+    g_stage = "ToolCorr (elements kept)";
+    for (size_t i = 1; i < tc_.stream().size(); ++i) {
+      g_index = i;
+      CHECK(tc_.stream()[i].objNo >= tc_.stream()[i - 1].objNo);
+    }
+    if (!tcStopped_) {
+      size_t j = 0;
+      for (size_t i = 0; i < dec_.els.size(); ++i) {
+        g_index = i;
+        while (j < tc_.stream().size() && tc_.stream()[j].objNo < dec_.els[i].objNo) ++j;
+        CHECK(j < tc_.stream().size() && tc_.stream()[j].objNo == dec_.els[i].objNo);
+      }
+    }
     // Stages that are off pass the path through.
     if (!tcActive_ && !tcStopped_) checkPassedThrough("ToolCorr (off)", dec_.els, tc_.stream());
     if (!laActive_) checkPassedThrough("AvoidLoop (off)", tc_.stream(), la_.stream());
