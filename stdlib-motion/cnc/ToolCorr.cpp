@@ -409,6 +409,7 @@ void ToolCorrector::acceptContour(const Element& e) {
       const P2 shift = off.a - prog.a;
       emitTail(&shift);
       held_ = next;
+      hasHeld_ = true;   // emitHeld() cleared it: without this the element was never emitted
       return;
     }
   }

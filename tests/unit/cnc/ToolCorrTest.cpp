@@ -168,6 +168,15 @@ TEST(ToolCorr, BlindPosInsertsPositioningAtBothEnds) {
   expectChained(els);
 }
 
+TEST(ToolCorr, BlindPosG0BetweenContourElementsKeepsTheNextElement) {
+  // A G0 between two contour elements connects them (no corner).  The element after it was
+  // once lost: it became the held element without being marked as held (found by
+  // tests/fuzz/path_fuzz.cpp, path_regressions/tc-blindpos-g0-between-contours-kept-next.cnc).
+  auto els = corrected("N10 G41 D1\nN20 G1 X10 Y0 F100\nN30 G0 X20 Y0\nN40 G1 X30 Y0\nN50 G40\n", ToolCorrMode::BlindPos);
+  expectPath(els, {{P, 0, 1}, {L, 10, 1}, {P, 20, 1}, {L, 30, 1}, {P, 30, 0}});
+  EXPECT_EQ(els[3].line, 4);
+}
+
 TEST(ToolCorr, ReversalGoesRoundTheEnd) {
   auto els = corrected("N10 G41 D1\nN20 G1 X10 F10\nN30 G1 X0\nN40 G40\n", ToolCorrMode::BlindPos);
   expectPath(els, {{P, 0, 1}, {L, 10, 1}, {CW, 10, -1, 10, 0, -kPi}, {L, 0, -1}, {P, 0, 0}});
