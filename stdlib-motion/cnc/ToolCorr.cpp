@@ -252,8 +252,15 @@ void ToolCorrector::emitTail(const P2* lastG0Shift) {
       // The positioning before a contour element ends at its offset start.
       setIn(t.end, in(t.end) + *lastG0Shift);
       t.start = cur_;
-    } else if (t.type == MoveType::LinPos || t.type == MoveType::InitPos) {
-      t.start = cur_;   // a positioning goes to its programmed point
+    } else if ((t.type == MoveType::LinPos && (mode_ == ToolCorrMode::BlindPos || !inSection_)) ||
+               t.type == MoveType::InitPos) {
+      // A positioning goes to its programmed point.  Only in TC_BLIND_POS (where G0 positions)
+      // or outside a section: in the ramp modes a G0 inside a section is part of the contour,
+      // and one that does not move in the plane (a Z retract between two contour elements)
+      // must keep the offset like any other such element; sent to its programmed point, it
+      // left the tool on the programmed corner and the next element started there (a gouge,
+      // and a corner arc whose start is its centre).
+      t.start = cur_;
     } else {
       for (size_t k = 0; k < t.end.size(); ++k) t.end[k] = cur_[k] + (t.end[k] - t.start[k]);
       t.start = cur_;

@@ -177,6 +177,25 @@ TEST(ToolCorr, BlindPosG0BetweenContourElementsKeepsTheNextElement) {
   EXPECT_EQ(els[3].line, 4);
 }
 
+TEST(ToolCorr, RampModesG0RetractBetweenContourElementsKeepsTheOffset) {
+  // In the ramp modes a G0 is part of the contour; one that does not move in the plane goes
+  // with the tool like a G1 plunge.  It once went to its programmed point, so the corner arc
+  // after it started at its own centre (found by tests/fuzz/path_fuzz.cpp,
+  // path_regressions/tc-rampin-g0-retract-between-contours.cnc).
+  for (ToolCorrMode m : {ToolCorrMode::RampIn, ToolCorrMode::BlindIn}) {
+    SCOPED_TRACE(static_cast<int>(m));
+    auto els = corrected("N10 G42 D1\nN20 G1 X10 Y0 F100\nN30 G0 Z5\nN40 G1 X10 Y10\nN50 G40\n", m);
+    if (m == ToolCorrMode::RampIn) {
+      expectPath(els, {{L, 10, -1}, {P, 10, -1}, {CCW, 11, 0, 10, 0, kPi / 2}, {L, 11, 10}});
+    } else {
+      // TC_BLIND_IN: the entry goes straight to the offset start of the second element.
+      expectPath(els, {{L, 11, 0}, {P, 11, 0}, {L, 11, 10}});
+    }
+    ASSERT_GE(els.size(), 2u);
+    EXPECT_EQ(els[1].end[AxZ], 5.0);
+  }
+}
+
 TEST(ToolCorr, ReversalGoesRoundTheEnd) {
   auto els = corrected("N10 G41 D1\nN20 G1 X10 F10\nN30 G1 X0\nN40 G40\n", ToolCorrMode::BlindPos);
   expectPath(els, {{P, 0, 1}, {L, 10, 1}, {CW, 10, -1, 10, 0, -kPi}, {L, 0, -1}, {P, 0, 0}});
