@@ -253,7 +253,8 @@ public:
     } else {
       CHECK(tc_.error() == ToolCorrError::None);
     }
-    CHECK(tc_.held() <= ToolCorrector::kMaxLookAhead + 1);
+    // The held contour element and up to kMaxLookAhead others (one more when that is the error).
+    CHECK(tc_.held() <= ToolCorrector::kMaxLookAhead + (ok ? 1 : 2));
     drainTc();
   }
 
