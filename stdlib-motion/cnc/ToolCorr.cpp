@@ -208,6 +208,10 @@ Element ToolCorrector::elementOf(const Element& orig, const Piece& pc) const {
     const Vec3 d = xyz(out.start) - g.centre;
     g.startAngle = std::atan2(dot(d, g.v), dot(d, g.u));
     g.sweep = pc.phi * sigma;
+    // The rise from where the tool is: the entry of a section can start at another height
+    // along the normal than programmed (the offset of a section in another plane before it),
+    // and the programmed rise then missed the programmed end.
+    g.rise = (out.end[in_] - out.start[in_]) * sigma;
     out.type = g.sweep > 0 ? MoveType::Cclw : MoveType::Clw;
   } else if (orig.type == MoveType::Clw || orig.type == MoveType::Cclw) {
     out.type = MoveType::Lin;   // a ramp arc that could not be re-centred

@@ -196,6 +196,22 @@ TEST(ToolCorr, RampModesG0RetractBetweenContourElementsKeepsTheOffset) {
   }
 }
 
+TEST(ToolCorr, HelixEntryAtAnotherHeightReachesItsProgrammedEnd) {
+  // TC_RAMP_IN: the G18 section leaves the tool 1 above the programmed Z; the G17 section
+  // that follows enters from there.  Its helix kept the programmed rise (20), so the arc's
+  // geometry ended at Z 21, not at its end point Z 20 (found by tests/fuzz/path_fuzz.cpp,
+  // path_regressions/tc-helix-entry-from-other-plane.cnc).
+  auto els = corrected("N10 G18\nN20 G42 D1\nN30 G1 X10 Z0 F100\nN40 G40\nN50 G17\nN60 G41 D1\n"
+                       "N70 G3 X0 Y10 Z20 I-10 J0\nN80 G40\n",
+                       ToolCorrMode::RampIn);
+  ASSERT_EQ(els.size(), 2u);
+  expectPos(els[0].end, {10, 0, 1});
+  EXPECT_EQ(els[1].type, CCW);
+  expectPos(els[1].end, {0, 9, 20});
+  EXPECT_NEAR(els[1].arc.rise, 19, kTol);
+  expectConsistent(els);
+}
+
 TEST(ToolCorr, ReversalGoesRoundTheEnd) {
   auto els = corrected("N10 G41 D1\nN20 G1 X10 F10\nN30 G1 X0\nN40 G40\n", ToolCorrMode::BlindPos);
   expectPath(els, {{P, 0, 1}, {L, 10, 1}, {CW, 10, -1, 10, 0, -kPi}, {L, 0, -1}, {P, 0, 0}});
