@@ -31,7 +31,8 @@
 //    documents a gap;
 //  - bounded element counts: ToolCorr emits at most 3 per input element + 1 (an inserted
 //    positioning or ramp-out link, and a corner arc/link or an entry positioning, per push;
-//    one positioning at finish) and holds at most kMaxLookAhead + 1; LoopAvoider emits
+//    one positioning at finish) and holds at most kMaxLookAhead + 1 (+ 1 with the look-ahead
+//    error); ToolCorr keeps every element it accepted, in order (objNo); LoopAvoider emits
 //    exactly in - dropped and holds at most kWindow; PathSmoother appends at most 3 per push
 //    and 2 per input element in all (the piece and one corner); the velocity check keeps
 //    the count; so the end of the chain has at most 6 n + 2 elements for n decoded ones;
