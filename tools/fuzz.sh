@@ -10,6 +10,9 @@
 # tools/fuzz.sh --gcode [SECONDS]: the G-code lexer, parser and decoder (tests/fuzz/gcode_fuzz.cpp,
 # docs/cnc.md); crashes land in build-fuzz/gcode-crashes/, minimised ones go to
 # tests/fuzz/gcode_regressions/ (replayed by the fuzz/gcode-replay test).
+# tools/fuzz.sh --path [SECONDS]: the path preprocessing chain ToolCorr -> AvoidLoop -> SmoothPath ->
+# CheckVelocities (tests/fuzz/path_fuzz.cpp); crashes land in build-fuzz/path-crashes/, minimised ones
+# go to tests/fuzz/path_regressions/ (replayed by the fuzz/path-replay test).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 configure_fuzz_build() {
@@ -28,6 +31,27 @@ if [ "${1:-}" = "--gcode" ]; then
   build-fuzz/tests/fuzz/stc_fuzz_gcode build-fuzz/gcode-corpus tests/fuzz/gcode_regressions -max_len=4096 -timeout=10 \
     -rss_limit_mb=4096 -max_total_time="$SECONDS_TO_RUN" -artifact_prefix=build-fuzz/gcode-crashes/ -print_final_stats=1 2>&1 |
     tee build-fuzz/gcode-fuzz.log | tail -25
+  exit 0
+fi
+if [ "${1:-}" = "--path" ]; then
+  SECONDS_TO_RUN=${2:-600}
+  configure_fuzz_build
+  cmake --build build-fuzz --target stc_fuzz_path
+  mkdir -p build-fuzz/path-corpus build-fuzz/path-crashes
+  # Seeds: the test programs behind three option headers (four bytes, see path_fuzz.cpp): no
+  # preprocessing; G41 radius 2 in TC_BLIND_POS with G51 and G61; G42 radius 0.5 in TC_RAMP_IN
+  # with G52 and pre-acknowledged M functions.
+  find tests/cnc tests/fuzz/gcode_regressions projects/*/nc -type f \( -name '*.cnc' -o -name '*.ngc' \) -size -4k |
+    while read -r f; do
+      i=0
+      for h in '\x80\x00\x00\x13' '\xac\x0d\x04\x53' '\xca\x0a\x28\x93'; do
+        { printf "$h"; cat "$f"; } > "build-fuzz/path-corpus/$(basename "$f")-$i"
+        i=$((i + 1))
+      done
+    done
+  build-fuzz/tests/fuzz/stc_fuzz_path build-fuzz/path-corpus tests/fuzz/path_regressions -max_len=4096 -timeout=10 \
+    -rss_limit_mb=4096 -max_total_time="$SECONDS_TO_RUN" -artifact_prefix=build-fuzz/path-crashes/ -print_final_stats=1 2>&1 |
+    tee build-fuzz/path-fuzz.log | tail -25
   exit 0
 fi
 if [ "${1:-}" = "--config" ]; then

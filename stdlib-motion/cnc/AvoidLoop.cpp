@@ -70,11 +70,15 @@ int crossings(const Element& a, const Element& b, double ta[2], double tb[2]) {
     const double dx = L.end[AxX] - p.x, dy = L.end[AxY] - p.y, len = std::hypot(dx, dy);
     if (len == 0) return 0;
     const double ux = dx / len, uy = dy / len, fx = p.x - C.arc.centre[0], fy = p.y - C.arc.centre[1];
-    const double bq = fx * ux + fy * uy, cq = fx * fx + fy * fy - C.arc.radius * C.arc.radius;
-    const double disc = bq * bq - cq;
+    // From the foot of the perpendicular from the centre: the discriminant bq^2 - |f|^2 + R^2
+    // cancels catastrophically when the line starts far from the circle (|f| >> R), which put
+    // the crossing (and the cut arc's start) off the circle.
+    const double s0 = -(fx * ux + fy * uy);
+    const double hx = fx + s0 * ux, hy = fy + s0 * uy;
+    const double disc = C.arc.radius * C.arc.radius - (hx * hx + hy * hy);
     if (disc < 0) return 0;
     const double sq = std::sqrt(disc);
-    for (double s : {-bq - sq, -bq + sq}) pts[n++] = {p.x + s * ux, p.y + s * uy};
+    for (double s : {s0 - sq, s0 + sq}) pts[n++] = {p.x + s * ux, p.y + s * uy};
   } else {
     const double dx = b.arc.centre[0] - a.arc.centre[0], dy = b.arc.centre[1] - a.arc.centre[1], D = std::hypot(dx, dy);
     if (D < 1e-15) return 0;

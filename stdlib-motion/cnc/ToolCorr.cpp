@@ -208,6 +208,10 @@ Element ToolCorrector::elementOf(const Element& orig, const Piece& pc) const {
     const Vec3 d = xyz(out.start) - g.centre;
     g.startAngle = std::atan2(dot(d, g.v), dot(d, g.u));
     g.sweep = pc.phi * sigma;
+    // The rise from where the tool is: the entry of a section can start at another height
+    // along the normal than programmed (the offset of a section in another plane before it),
+    // and the programmed rise then missed the programmed end.
+    g.rise = (out.end[in_] - out.start[in_]) * sigma;
     out.type = g.sweep > 0 ? MoveType::Cclw : MoveType::Clw;
   } else if (orig.type == MoveType::Clw || orig.type == MoveType::Cclw) {
     out.type = MoveType::Lin;   // a ramp arc that could not be re-centred
@@ -252,8 +256,15 @@ void ToolCorrector::emitTail(const P2* lastG0Shift) {
       // The positioning before a contour element ends at its offset start.
       setIn(t.end, in(t.end) + *lastG0Shift);
       t.start = cur_;
-    } else if (t.type == MoveType::LinPos || t.type == MoveType::InitPos) {
-      t.start = cur_;   // a positioning goes to its programmed point
+    } else if ((t.type == MoveType::LinPos && (mode_ == ToolCorrMode::BlindPos || !inSection_)) ||
+               t.type == MoveType::InitPos) {
+      // A positioning goes to its programmed point.  Only in TC_BLIND_POS (where G0 positions)
+      // or outside a section: in the ramp modes a G0 inside a section is part of the contour,
+      // and one that does not move in the plane (a Z retract between two contour elements)
+      // must keep the offset like any other such element; sent to its programmed point, it
+      // left the tool on the programmed corner and the next element started there (a gouge,
+      // and a corner arc whose start is its centre).
+      t.start = cur_;
     } else {
       for (size_t k = 0; k < t.end.size(); ++k) t.end[k] = cur_[k] + (t.end[k] - t.start[k]);
       t.start = cur_;
@@ -409,6 +420,7 @@ void ToolCorrector::acceptContour(const Element& e) {
       const P2 shift = off.a - prog.a;
       emitTail(&shift);
       held_ = next;
+      hasHeld_ = true;   // emitHeld() cleared it: without this the element was never emitted
       return;
     }
   }

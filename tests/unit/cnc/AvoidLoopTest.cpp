@@ -41,6 +41,29 @@ TEST(AvoidLoop, BowTieIsCutAtTheCrossing) {
   expectChained(out);
 }
 
+TEST(AvoidLoop, LineFarFromTheArcCrossesItOnTheCircle) {
+  // The line comes from x = 1e8: the crossing with the circle of radius sqrt(21.25) about
+  // (33,-4) once had an error of ~0.1 (the discriminant cancelled), so the cut arc started
+  // off its circle (found by tests/fuzz/path_fuzz.cpp,
+  // path_regressions/loop-line-far-from-arc.cnc).
+  Decoded d("N1 G61\nN2 G0 X100000000\nN3 G1 X30 Y0 F10\nN4 G1 Y-0.5\nN5 G2 X30 Y-0.5 I3 J-3.5\n");
+  ASSERT_EQ(d.els.size(), 4u);
+  auto out = avoidLoopsAll(d.els);
+  ASSERT_EQ(out.size(), 3u);   // the short line is the loop's
+  // The cut point comes from the line's parameter: 1e-15 of its 1e8 length is ~1e-7.
+  constexpr double kLong = 1e-7;
+  const double x = 33 - std::sqrt(5.25);
+  expectPos(out[1].end, {x, 0, 0}, kLong);
+  const Element& arc = out[2];
+  ASSERT_EQ(arc.type, MoveType::Clw);
+  expectPos(arc.start, {x, 0, 0}, kLong);
+  expectPos(arc.end, {30, -0.5, 0});
+  const Vec3 s = arc.arc.centre + (arc.arc.radius * std::cos(arc.arc.startAngle)) * arc.arc.u +
+                 (arc.arc.radius * std::sin(arc.arc.startAngle)) * arc.arc.v;
+  expectVec(s, xyz(arc.start), kLong);   // before: 0.1 off
+  expectChained(out);
+}
+
 TEST(AvoidLoop, OffWithoutG61) {
   Decoded d("N2 G1 X10 Y0 F10\nN3 G1 X10 Y5\nN4 G1 X5 Y-5\nN5 G1 X5 Y-10\n");
   auto out = avoidLoopsAll(d.els);

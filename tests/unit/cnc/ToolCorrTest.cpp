@@ -168,6 +168,50 @@ TEST(ToolCorr, BlindPosInsertsPositioningAtBothEnds) {
   expectChained(els);
 }
 
+TEST(ToolCorr, BlindPosG0BetweenContourElementsKeepsTheNextElement) {
+  // A G0 between two contour elements connects them (no corner).  The element after it was
+  // once lost: it became the held element without being marked as held (found by
+  // tests/fuzz/path_fuzz.cpp, path_regressions/tc-blindpos-g0-between-contours-kept-next.cnc).
+  auto els = corrected("N10 G41 D1\nN20 G1 X10 Y0 F100\nN30 G0 X20 Y0\nN40 G1 X30 Y0\nN50 G40\n", ToolCorrMode::BlindPos);
+  expectPath(els, {{P, 0, 1}, {L, 10, 1}, {P, 20, 1}, {L, 30, 1}, {P, 30, 0}});
+  EXPECT_EQ(els[3].line, 4);
+}
+
+TEST(ToolCorr, RampModesG0RetractBetweenContourElementsKeepsTheOffset) {
+  // In the ramp modes a G0 is part of the contour; one that does not move in the plane goes
+  // with the tool like a G1 plunge.  It once went to its programmed point, so the corner arc
+  // after it started at its own centre (found by tests/fuzz/path_fuzz.cpp,
+  // path_regressions/tc-rampin-g0-retract-between-contours.cnc).
+  for (ToolCorrMode m : {ToolCorrMode::RampIn, ToolCorrMode::BlindIn}) {
+    SCOPED_TRACE(static_cast<int>(m));
+    auto els = corrected("N10 G42 D1\nN20 G1 X10 Y0 F100\nN30 G0 Z5\nN40 G1 X10 Y10\nN50 G40\n", m);
+    if (m == ToolCorrMode::RampIn) {
+      expectPath(els, {{L, 10, -1}, {P, 10, -1}, {CCW, 11, 0, 10, 0, kPi / 2}, {L, 11, 10}});
+    } else {
+      // TC_BLIND_IN: the entry goes straight to the offset start of the second element.
+      expectPath(els, {{L, 11, 0}, {P, 11, 0}, {L, 11, 10}});
+    }
+    ASSERT_GE(els.size(), 2u);
+    EXPECT_EQ(els[1].end[AxZ], 5.0);
+  }
+}
+
+TEST(ToolCorr, HelixEntryAtAnotherHeightReachesItsProgrammedEnd) {
+  // TC_RAMP_IN: the G18 section leaves the tool 1 above the programmed Z; the G17 section
+  // that follows enters from there.  Its helix kept the programmed rise (20), so the arc's
+  // geometry ended at Z 21, not at its end point Z 20 (found by tests/fuzz/path_fuzz.cpp,
+  // path_regressions/tc-helix-entry-from-other-plane.cnc).
+  auto els = corrected("N10 G18\nN20 G42 D1\nN30 G1 X10 Z0 F100\nN40 G40\nN50 G17\nN60 G41 D1\n"
+                       "N70 G3 X0 Y10 Z20 I-10 J0\nN80 G40\n",
+                       ToolCorrMode::RampIn);
+  ASSERT_EQ(els.size(), 2u);
+  expectPos(els[0].end, {10, 0, 1});
+  EXPECT_EQ(els[1].type, CCW);
+  expectPos(els[1].end, {0, 9, 20});
+  EXPECT_NEAR(els[1].arc.rise, 19, kTol);
+  expectConsistent(els);
+}
+
 TEST(ToolCorr, ReversalGoesRoundTheEnd) {
   auto els = corrected("N10 G41 D1\nN20 G1 X10 F10\nN30 G1 X0\nN40 G40\n", ToolCorrMode::BlindPos);
   expectPath(els, {{P, 0, 1}, {L, 10, 1}, {CW, 10, -1, 10, 0, -kPi}, {L, 0, -1}, {P, 0, 0}});
