@@ -303,13 +303,32 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
     auto next = std::make_shared<Time>(every);
     sched_->addTickPeriod(every);
     const std::string file = opts.retainFile;
-    sched_->setTickCallback([this, next, every, file, retainSave, tick = std::move(tickFn_)](Time now) {
+    tickFn_ = [this, next, every, file, retainSave, tick = std::move(tickFn_)](Time now) {
       if (tick) tick(now);
       if (now + sched_->baseTick() >= *next) {
         retainSave(file);
         *next += every;
       }
-    });
+    };
+    sched_->setTickCallback(tickFn_);
+  }
+  if (opts.watchEvery && *opts.watchEvery > 0 && !watches.empty()) {
+    // The watches on one line at every multiple of D (with --realtime: a live view).
+    Time every = *opts.watchEvery;
+    auto next = std::make_shared<Time>(every);
+    sched_->addTickPeriod(every);
+    tickFn_ = [this, next, every, &watches, &opts, &out, tick = std::move(tickFn_)](Time now) {
+      if (tick) tick(now);
+      const Time end = now + sched_->baseTick();   // the values after this tick are those of `end`
+      if (end < *next) return;
+      const Time at = end / every * every;         // D shorter than a tick: one line per tick
+      out << "[" << formatIecTime(at) << "]";
+      for (size_t k = 0; k < watches.size(); ++k) out << (k ? "; " : " ") << opts.watches[k] << " = " << valueText(watches[k]);
+      out << "\n";
+      out.flush();
+      *next = at + every;
+    };
+    sched_->setTickCallback(tickFn_);
   }
   RunLimit limit;
   limit.cycles = opts.cycles;

@@ -36,6 +36,7 @@ struct RunOptions {
   bool realtime = false;
   bool stats = false;
   std::vector<std::string> watches;
+  std::optional<Time> watchEvery;        // also print the watches every D of simulated time
   std::vector<std::string> traces;
   std::string traceOut;
   std::optional<Time> watchdog;

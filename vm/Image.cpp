@@ -1,5 +1,6 @@
 #include "vm/Image.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -328,9 +329,18 @@ std::string formatValue(const uint8_t* p, const Type* t, const sema::Layout& lay
     case TypeKind::Struct: case TypeKind::Union: case TypeKind::FunctionBlock: case TypeKind::Program: {
       std::string out = "(";
       bool first = true;
-      for (const sema::FieldLayout& f : layout.of(t).fields) {
+      // A function block with inputs or outputs shows that interface, not its inner state
+      // (which stays reachable by path: `fb.inner`); one without (a class with methods)
+      // shows its variables.
+      auto isInterface = [](const sema::FieldLayout& f) {
+        return f.decl && (f.decl->section == ast::VarSection::Input || f.decl->section == ast::VarSection::Output);
+      };
+      const auto& fields = layout.of(t).fields;
+      const bool interfaceOnly = t->kind == TypeKind::FunctionBlock && std::any_of(fields.begin(), fields.end(), isInterface);
+      for (const sema::FieldLayout& f : fields) {
         if (!f.type) continue;   // the vptr
         if (isInternalField(t, f)) continue;   // the native implementation's binding
+        if (interfaceOnly && !isInterface(f)) continue;
         out += (first ? "" : ", ") + f.name + " := " +
                (f.indirect ? hex(readUnsigned(p + f.offset, 8))
                 : f.bit >= 0 ? std::string((p[f.offset] >> f.bit) & 1 ? "TRUE" : "FALSE")

@@ -186,6 +186,7 @@ struct BuildArgs : CheckArgs {
   int64_t slice = 0;
   std::string retain;
   std::string retainEvery;
+  std::string watchEvery;
   bool cold = false;
   bool retainReset = false;
   std::string dataDir;
@@ -292,7 +293,7 @@ int runRun(const BuildArgs& a) {
     return true;
   };
   if (!duration("--for", a.forDuration, false, ro.duration) || !duration("--watchdog", a.watchdog, false, ro.watchdog) ||
-      !duration("--retain-every", a.retainEvery, true, ro.retainEvery))
+      !duration("--retain-every", a.retainEvery, true, ro.retainEvery) || !duration("--watch-every", a.watchEvery, true, ro.watchEvery))
     return 2;
   if (a.slice > 0) ro.slice = a.slice;
   ro.retainFile = a.retain;
@@ -305,6 +306,10 @@ int runRun(const BuildArgs& a) {
   ro.realtime = a.realtime;
   ro.stats = a.stats;
   ro.watches = a.watches;
+  if (ro.watchEvery && ro.watches.empty()) {
+    std::cerr << "stc: error: --watch-every needs --watch VAR (the values to print)\n";
+    return 2;
+  }
   for (const std::string& t : a.traces) {
     size_t pos = 0;
     while (pos <= t.size()) {
@@ -455,13 +460,13 @@ int main(int argc, char** argv) {
   CLI::App* run = app.add_subcommand("run", "Run on the simulated controller and print watched variables");
   addCompileOptions(run, ra);
   // A count is digits only, at most 10^12 (CLI11 would wrap "-5" into a huge unsigned number).
-  auto* cyc = run->add_option("--cycles", ra.cycles, "Run N cycles of the fastest task (0 .. 10^12)")
+  auto* cyc = run->add_option("--cycles", ra.cycles, "Run N cycles of the fastest task (0 .. 10^12); without --cycles and --for: one cycle")
                   ->check([](const std::string& t) -> std::string {
                     if (t.empty() || t.size() > 13 || t.find_first_not_of("0123456789") != std::string::npos || std::stoull(t) > 1'000'000'000'000ull)
                       return "'" + t.substr(0, 40) + "' is not a number of cycles from 0 to 10^12";
                     return "";
                   });
-  run->add_option("--for", ra.forDuration, "Run for a simulated duration (10s, 250ms, T#1s500ms)")->excludes(cyc);
+  run->add_option("--for", ra.forDuration, "Run for a simulated duration (10s, 250ms, T#1s500ms); without --for and --cycles: one cycle")->excludes(cyc);
   run->add_option("--interval", ra.interval, "Cycle time of the implicit task (default 1ms)");
   run->add_option("--program", ra.programs, "PROGRAM(s) the implicit task runs (without a CONFIGURATION)")->allow_extra_args(false);
   run->add_option("--watch", ra.watches, "Print VAR after the run (MAIN.fb.Q, GVL.x, arr[3])")->allow_extra_args(false);
@@ -479,6 +484,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(int64_t(1), int64_t(1'000'000'000'000'000)));
   run->add_option("--retain", ra.retain, "Keep RETAIN/PERSISTENT variables in FILE across runs");
   run->add_option("--retain-every", ra.retainEvery, "Also save the retain file every DUR of simulated time");
+  run->add_option("--watch-every", ra.watchEvery, "Also print the watches every DUR of simulated time (with --realtime: live)");
   run->add_flag("--cold", ra.cold, "Cold start: restore only PERSISTENT variables");
   run->add_flag("--retain-reset", ra.retainReset,
                 "Start from the initial values and replace the --retain FILE even if it is damaged or of a newer format "
@@ -521,7 +527,7 @@ int main(int argc, char** argv) {
   if (exp->parsed()) return runExport(ea);
   if (pc.cmd->parsed()) return pc.run();
   ra.cyclesGiven = cyc->count() > 0;
-  for (const char* o : {"--for", "--interval", "--watchdog", "--retain-every"})
+  for (const char* o : {"--for", "--interval", "--watchdog", "--retain-every", "--watch-every"})
     if (run->get_option(o)->count() > 0) ra.given.insert(o);
   if (run->parsed()) return runRun(ra);
   if (test->parsed()) return tools::runTest(ta);
