@@ -154,7 +154,7 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
       traced.push_back(ref);
     }
     std::string e;
-    trace = TraceWriter::create(opts.traceOut.empty() ? "trace.csv" : opts.traceOut, cols, e);
+    trace = TraceWriter::create(opts.traceOut.empty() ? "trace.csv" : opts.traceOut, cols, e, opts.traceCsv);
     if (!trace) {
       err << "stc: error: " << e << "\n";
       return 2;

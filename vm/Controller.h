@@ -15,6 +15,7 @@
 #include "basic/Diagnostics.h"
 #include "codegen/CodeGen.h"
 #include "vm/Time.h"
+#include "vm/Trace.h"
 
 namespace stc::sema { struct Model; class Type; }
 
@@ -39,6 +40,7 @@ struct RunOptions {
   std::optional<Time> watchEvery;        // also print the watches every D of simulated time
   std::vector<std::string> traces;
   std::string traceOut;
+  CsvTraceOptions traceCsv;              // how a CSV trace writes its rows (stc test: sampling, tolerance)
   std::optional<Time> watchdog;
   std::optional<int64_t> slice;
   std::string retainFile;                // RETAIN/PERSISTENT variables: restored at start, saved at stop

@@ -245,27 +245,7 @@ bool parseDateText(std::string_view text, char kind, int64_t& ns) {
   return true;
 }
 
-std::string formatReal(double v, bool single) {
-  if (std::isnan(v)) return "NaN";
-  if (std::isinf(v)) return v > 0 ? "Inf" : "-Inf";
-  char buf[64];
-  std::to_chars_result r = single ? std::to_chars(buf, buf + sizeof buf, static_cast<float>(v)) : std::to_chars(buf, buf + sizeof buf, v);
-  std::string s(buf, r.ptr);
-  // The shortest round-trip form, but as an ST literal: plain digits for
-  // magnitudes a reader takes in at a glance (100000.0, not 1E+05), and a
-  // mantissa with a fraction in exponent form (1.0E+19).
-  const double mag = std::fabs(v);
-  if (s.find('e') != std::string::npos && mag >= 1e-5 && mag < 1e16) {
-    r = single ? std::to_chars(buf, buf + sizeof buf, static_cast<float>(v), std::chars_format::fixed)
-               : std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed);
-    s.assign(buf, r.ptr);
-  }
-  for (char& c : s)
-    if (c == 'e') c = 'E';
-  const size_t e = s.find('E');
-  if (s.find('.') == std::string::npos) s.insert(e == std::string::npos ? s.size() : e, ".0");
-  return s;
-}
+// formatReal: vm/Trace.cpp (in stc_vmcore, which the trace writer is part of).
 
 // An {attribute 'internal'} field of a function block or structure: the
 // binding of the instance to its native implementation, not shown or resolved.

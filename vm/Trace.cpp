@@ -1,9 +1,12 @@
 #include "vm/Trace.h"
 
 #include <cerrno>
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+
 
 namespace stc::vm {
 namespace {
@@ -64,29 +67,60 @@ void appendCsvField(std::string& out, std::string_view s) {
 
 class CsvWriter final : public TraceWriter {
 public:
-  CsvWriter(std::unique_ptr<Output> out, std::vector<TraceColumn> columns) : out_(std::move(out)) {
+  CsvWriter(std::unique_ptr<Output> out, std::vector<TraceColumn> columns, const CsvTraceOptions& opts)
+      : out_(std::move(out)), columns_(std::move(columns)), opts_(opts) {
     std::string& b = out_->buffer();
     b += "time";
-    for (const TraceColumn& c : columns) {
+    for (const TraceColumn& c : columns_) {
       b += ',';
       appendCsvField(b, c.name);
     }
     b += '\n';
   }
   void sample(Time t, const std::vector<TraceValue>& values) override {
+    if (opts_.every > 0 && t % opts_.every != 0) return;
+    row_.clear();
+    for (size_t i = 0; i < values.size(); ++i) {
+      row_ += ',';
+      const TraceValue& v = values[i];
+      if (opts_.tolerance && i < columns_.size() && columns_[i].kind == TraceColumn::Real)
+        appendCsvField(row_, formatTraceReal(v.real, columns_[i].bits == 32, *opts_.tolerance));
+      else
+        appendCsvField(row_, v.literal);
+    }
+    if (opts_.onChange) {
+      if (written_ && row_ == last_) {
+        // Unchanged: held back, written by finish() if it is the last sample.
+        pending_ = true;
+        pendingTime_ = t;
+        return;
+      }
+      last_ = row_;
+      written_ = true;
+      pending_ = false;
+    }
+    write(t, row_);
+  }
+  bool finish(std::string& error) override {
+    if (pending_) write(pendingTime_, last_);
+    pending_ = false;
+    return out_->close(error);
+  }
+
+private:
+  void write(Time t, const std::string& values) {
     std::string& b = out_->buffer();
     b += formatSeconds(t);
-    for (const TraceValue& v : values) {
-      b += ',';
-      appendCsvField(b, v.literal);
-    }
+    b += values;
     b += '\n';
     out_->flushIfBig();
   }
-  bool finish(std::string& error) override { return out_->close(error); }
-
-private:
   std::unique_ptr<Output> out_;
+  std::vector<TraceColumn> columns_;
+  CsvTraceOptions opts_;
+  std::string row_, last_;   // ",v1,v2..." of this sample / of the last row written
+  bool written_ = false, pending_ = false;
+  Time pendingTime_ = 0;
 };
 
 class VcdWriter final : public TraceWriter {
@@ -209,8 +243,74 @@ bool endsWithIgnoreCase(const std::string& s, std::string_view suffix) {
 
 }  // namespace
 
+std::string formatReal(double v, bool single) {
+  if (std::isnan(v)) return "NaN";
+  if (std::isinf(v)) return v > 0 ? "Inf" : "-Inf";
+  char buf[64];
+  std::to_chars_result r = single ? std::to_chars(buf, buf + sizeof buf, static_cast<float>(v)) : std::to_chars(buf, buf + sizeof buf, v);
+  std::string s(buf, r.ptr);
+  // The shortest round-trip form, but as an ST literal: plain digits for
+  // magnitudes a reader takes in at a glance (100000.0, not 1E+05), and a
+  // mantissa with a fraction in exponent form (1.0E+19).
+  const double mag = std::fabs(v);
+  if (s.find('e') != std::string::npos && mag >= 1e-5 && mag < 1e16) {
+    r = single ? std::to_chars(buf, buf + sizeof buf, static_cast<float>(v), std::chars_format::fixed)
+               : std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed);
+    s.assign(buf, r.ptr);
+  }
+  for (char& c : s)
+    if (c == 'e') c = 'E';
+  const size_t e = s.find('E');
+  if (s.find('.') == std::string::npos) s.insert(e == std::string::npos ? s.size() : e, ".0");
+  return s;
+}
+
+namespace {
+// The significant digits of a literal: 450.0 and 4.5E+02 have 2, 0.0012 has 2.
+size_t significantDigits(const std::string& literal) {
+  std::string d;
+  for (char c : literal.substr(0, literal.find('E')))
+    if (c >= '0' && c <= '9') d += c;
+  const size_t first = d.find_first_not_of('0');
+  return first == std::string::npos ? 0 : d.find_last_not_of('0') + 1 - first;
+}
+}  // namespace
+
+std::string formatTraceReal(double v, bool single, double tolerance) {
+  if (std::isnan(v)) return "NaN";
+  if (std::isinf(v)) return v > 0 ? "Inf" : "-Inf";
+  if (v == 0 || std::fabs(v) < tolerance) return "0.0";   // also -0.0
+  if (!(tolerance > 0)) return formatReal(v, single);
+  const double bound = tolerance * std::max(1.0, std::fabs(v)) / 2;
+  auto close = [&](const char* b, const char* e) {
+    double x = 0;
+    return std::from_chars(b, e, x).ec == std::errc() && std::fabs(x - v) <= bound ? std::optional<double>(x) : std::nullopt;
+  };
+  // The value's own literal (a REAL's is shorter) when it is close enough read as an LREAL.
+  const std::string exact = formatReal(v, single);
+  const bool exactClose = close(exact.data(), exact.data() + exact.size()).has_value();
+  char buf[64];
+  // The fewest significant digits whose correctly rounded value is close enough.
+  for (int digits = 1; digits < 17; ++digits) {
+    const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::scientific, digits - 1);
+    const std::optional<double> x = close(buf, r.ptr);
+    if (!x) continue;
+    // x's shortest round-trip digits (at most `digits`), as a REAL literal: plain for
+    // 1E-5 <= |x| < 1E16, else in exponent form (to_chars may choose 377491411941500032).
+    const double mag = std::fabs(*x);
+    const std::to_chars_result q = mag >= 1e-5 && mag < 1e16 ? std::to_chars(buf, buf + sizeof buf, *x, std::chars_format::fixed)
+                                                             : std::to_chars(buf, buf + sizeof buf, *x, std::chars_format::scientific);
+    std::string s(buf, q.ptr);
+    for (char& c : s)
+      if (c == 'e') c = 'E';
+    if (s.find('.') == std::string::npos) s.insert(std::min(s.find('E'), s.size()), ".0");
+    return exactClose && significantDigits(exact) <= static_cast<size_t>(digits) ? exact : s;
+  }
+  return exactClose ? exact : formatReal(v, false);
+}
+
 std::unique_ptr<TraceWriter> TraceWriter::create(const std::string& path, std::vector<TraceColumn> columns,
-                                                 std::string& error) {
+                                                 std::string& error, const CsvTraceOptions& csvOptions) {
   bool csv = endsWithIgnoreCase(path, ".csv");
   bool vcd = endsWithIgnoreCase(path, ".vcd");
   if (!csv && !vcd) {
@@ -225,7 +325,7 @@ std::unique_ptr<TraceWriter> TraceWriter::create(const std::string& path, std::v
       }
   auto out = std::make_unique<Output>();
   if (!out->open(path, error)) return nullptr;
-  if (csv) return std::make_unique<CsvWriter>(std::move(out), std::move(columns));
+  if (csv) return std::make_unique<CsvWriter>(std::move(out), std::move(columns), csvOptions);
   return std::make_unique<VcdWriter>(std::move(out), std::move(columns));
 }
 

@@ -272,6 +272,22 @@ struct Validator {
         if (!parseDuration(*s, f.positive ? DurationSign::Positive : DurationSign::NonNegative, ns, &why)) return fail(n, label + ": " + why);
         return true;
       }
+      case Kind::Sampling: {
+        auto s = n.value_exact<std::string>();
+        std::string list;
+        for (size_t i = 0; i < f.choices.size(); ++i) list += std::string(" or \"") + f.choices[i] + "\"";
+        if (!s) return fail(n, label + " = " + text(n) + ": a duration string (e.g. \"10ms\")" + list + " is expected");
+        if (std::find_if(f.choices.begin(), f.choices.end(), [&](const char* c) { return *s == c; }) != f.choices.end()) return true;
+        int64_t ns = 0;
+        std::string why;
+        if (parseDuration(*s, DurationSign::Positive, ns, &why)) return true;
+        // Not a duration: a misspelt choice ("chnage"), else the duration's own message.
+        const std::string hint = closest(*s, std::vector<std::string>(f.choices.begin(), f.choices.end()));
+        if (!hint.empty() || s->find_first_of("0123456789") == std::string::npos)
+          return fail(n, label + " = " + text(n) + ": a duration (e.g. \"10ms\")" + list + " is expected" +
+                             (hint.empty() ? "" : "; did you mean \"" + hint + "\"?"));
+        return fail(n, label + ": " + why);
+      }
       case Kind::Literal: {
         if (auto d = n.value_exact<double>(); d && !std::isfinite(*d)) return fail(n, label + " = " + text(n) + ": the number must be finite");
         if (!n.is_string() && !n.is_boolean() && !n.is_integer() && !n.is_floating_point())
@@ -454,6 +470,11 @@ Field ordered(Field f) {
   f.ordered = true;
   return f;
 }
+Field sampling(const char* n, std::vector<const char*> choices) {
+  Field f{n, Kind::Sampling};
+  f.choices = std::move(choices);
+  return f;
+}
 Field positiveDuration(const char* n) {
   Field f{n, Kind::Duration};
   f.positive = true;
@@ -547,7 +568,7 @@ const Schema& scenarioSchema() {
                             {{"min", "max"}}};
   static const Schema root{"the scenario",
                            {str("description"), positiveDuration("duration"), integer("cycles", 1, 1e12), list("trace", Kind::VarPath),
-                            num("tolerance", 0, 1e300), tables("set", set), tables("fault", fault), tables("check", check)},
+                            num("tolerance", 0, 1e300), sampling("sample", {"change"}), tables("set", set), tables("fault", fault), tables("check", check)},
                            {},
                            {},
                            {{"duration", "cycles"}}};

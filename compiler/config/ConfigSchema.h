@@ -42,6 +42,7 @@ enum class Kind {
   Number,       // a TOML integer or float, finite, in [min, max] (minOpen: > min)
   Bool,
   Duration,     // a duration string (config::parseDuration), >= 0 (positive: > 0)
+  Sampling,     // a positive duration string or one of `choices` (a scenario's sample = "10ms" | "change")
   Literal,      // an ST literal: a string, boolean, integer or finite float
   NumberPair,   // [a, b] of Numbers in [min, max] (minOpen: both > min); ordered: a <= b
   DurationPair, // ["T1", "T2"], T1 <= T2

@@ -1,11 +1,14 @@
 // `stc test` (docs/projects.md, "Scenarios and golden traces").
 //
-// The parent process validates the project directories and starts one child
-// (`/proc/self/exe test --one DIR`) per project, at most -j at a time, so
-// projects run in parallel and a crash stays in its project.  A child writes its report to a temporary file; the parent prints
-// the reports whole, in argument order, and counts their PASS/FAIL lines.
-// Inside a project the sources are parsed and checked once; each scenario
-// gets fresh generated code, a fresh controller and a fresh motion kernel.
+// The parent process validates the command line and the project directories
+// and starts one child (`/proc/self/exe test --one DIR`) per project, at most
+// -j at a time, so projects run in parallel.  A child writes its report to a
+// temporary file; the parent prints the reports whole, in argument order, and
+// counts their PASS/FAIL lines.  Inside a project the sources are parsed and
+// checked once; then each scenario runs in a process of its own (fork): fresh
+// generated code, controller, motion kernel and diagnostics, so whatever one
+// scenario does (a runtime fault, a crash of stc itself) cannot touch the
+// others; its outcome comes back through a pipe.
 #include "tools/stc/TestCommand.h"
 
 #include <fcntl.h>
@@ -22,7 +25,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <sstream>
 
@@ -77,6 +82,11 @@ struct Scenario {
   std::optional<uint64_t> cycles;
   std::vector<std::string> trace;
   double tolerance = 1e-9;
+  // The golden trace's rows: every base tick, or those at multiples of `sampleEvery`,
+  // or (sampleChange) those where a value changed, and the first and the last.
+  std::optional<vm::Time> sampleEvery;
+  bool sampleChange = false;
+  std::string sampleWhere, sampleText;   // scenarios/x.toml:4:10, "10ms"
   std::vector<SetStep> sets;
   std::vector<FaultStep> faults;
   std::vector<Check> checks;
@@ -145,6 +155,18 @@ bool loadScenario(const fs::path& path, const std::string& shown, Scenario& sc, 
     auto d = tol->value<double>();
     if (!d || !(*d >= 0)) return fail(*tol, "tolerance must be a number >= 0");
     sc.tolerance = *d;
+  }
+  if (const toml::node* smp = tbl.get("sample")) {
+    // The schema has checked: "change" or a positive duration.
+    sc.sampleWhere = where(shown, *smp);
+    sc.sampleText = smp->value_exact<std::string>().value_or("");
+    vm::Time t = 0;
+    if (sc.sampleText == "change") sc.sampleChange = true;
+    else if (durationOf(smp, t) && t > 0) sc.sampleEvery = t;
+    else return fail(*smp, "sample = \"" + sc.sampleText + "\": a positive duration (e.g. \"10ms\") or \"change\" is expected");
+    if (sc.sampleEvery && sc.duration && *sc.sampleEvery > *sc.duration)
+      return fail(*smp, "sample = \"" + sc.sampleText + "\": above the scenario's duration (" + vm::formatIecTime(*sc.duration) + ")");
+    if (sc.trace.empty()) return fail(*smp, "sample = \"" + sc.sampleText + "\": the scenario has no trace to sample");
   }
   auto tables = [&](const char* key, const toml::array*& out) {
     out = nullptr;
@@ -270,43 +292,159 @@ bool withinTolerance(double a, double e, double tol) {
   return std::fabs(a - e) <= tol * std::max(1.0, std::fabs(e));
 }
 
-std::string secondsText(const std::string& csvTime) {
-  vm::Time t = 0;
-  return vm::parseIecDuration(csvTime + "s", t) ? vm::formatIecTime(t) : csvTime + " s";
-}
+// A trace CSV: the header's variable names, then per row its time and values.
+struct TraceTable {
+  std::vector<std::string> names;
+  std::vector<vm::Time> times;
+  std::vector<std::vector<std::string>> rows;
+};
 
-// Compares the run's CSV with the golden one; appends the first difference.
-bool compareTraces(const std::string& expected, const std::string& actual, const std::vector<bool>& realColumn, double tol,
-                   std::string& report) {
-  std::vector<std::string> e = splitLines(expected), a = splitLines(actual);
-  if (e.empty() || a.empty() || e[0] != a[0]) {
-    report += fmt::format("  trace columns differ: expected '{}', actual '{}'\n", e.empty() ? "" : e[0], a.empty() ? "" : a[0]);
-    return false;
-  }
-  std::vector<std::string> names = splitCsvLine(a[0]);
-  size_t rows = std::min(e.size(), a.size());
-  for (size_t r = 1; r < rows; ++r) {
-    if (e[r] == a[r]) continue;
-    std::vector<std::string> ef = splitCsvLine(e[r]), af = splitCsvLine(a[r]);
-    std::string lines;
-    for (size_t c = 0; c < std::max(ef.size(), af.size()); ++c) {
-      std::string ev = c < ef.size() ? ef[c] : "(missing)", av = c < af.size() ? af[c] : "(missing)";
-      if (ev == av) continue;
-      double x, y;
-      if (c > 0 && c - 1 < realColumn.size() && realColumn[c - 1] && numberOf(ev, x) && numberOf(av, y) && withinTolerance(y, x, tol)) continue;
-      std::string name = c < names.size() ? names[c] : "column " + std::to_string(c + 1);
-      lines += fmt::format("    {}: expected {}, actual {}\n", name, ev, av);
-    }
-    if (lines.empty()) continue;   // REAL values within the tolerance
-    std::string time = !af.empty() ? af[0] : "?";
-    report += fmt::format("  first difference at cycle {} (time {}):\n{}", r, secondsText(time), lines);
-    return false;
-  }
-  if (e.size() != a.size()) {
-    report += fmt::format("  the trace has {} rows, expected {}\n", a.size() - 1, e.size() - 1);
-    return false;
+bool parseTrace(const std::string& text, TraceTable& t, std::string& error) {
+  std::vector<std::string> lines = splitLines(text);
+  if (lines.empty()) return error = "is empty", false;
+  std::vector<std::string> head = splitCsvLine(lines[0]);
+  if (head.empty() || head[0] != "time") return error = "line 1: the header does not start with 'time'", false;
+  t.names.assign(head.begin() + 1, head.end());
+  for (size_t r = 1; r < lines.size(); ++r) {
+    if (lines[r].empty() && r + 1 == lines.size()) break;
+    std::vector<std::string> f = splitCsvLine(lines[r]);
+    vm::Time at = 0;
+    if (f.size() != head.size() || !vm::parseIecDuration(f[0] + "s", at) || at < 0 || (!t.times.empty() && at <= t.times.back()))
+      return error = fmt::format("line {}: not a row of {} values after a time in seconds later than the row before", r + 1, head.size()), false;
+    t.times.push_back(at);
+    f.erase(f.begin());
+    t.rows.push_back(std::move(f));
   }
   return true;
+}
+
+std::string shortValue(const std::string& v) { return v.size() > 60 ? v.substr(0, 57) + "..." : v; }
+
+// Where a difference is: the time and the base tick's number (1 = time 0).
+std::string whenText(vm::Time t, vm::Time base) {
+  return fmt::format("{} (cycle {})", vm::formatIecTime(t), base > 0 ? t / base + 1 : 0);
+}
+
+struct GoldenCompare {
+  const std::map<std::string, bool>* realColumn;   // trace name -> REAL/LREAL
+  double tolerance = 0;
+  vm::Time base = 0;             // the base tick, for cycle numbers
+  bool held = false;             // sample = "change": a value holds until the next row
+  std::string golden;            // "expected/x.csv", for messages
+};
+
+// Compares the run's trace with the golden one; appends the differences to `report`:
+// per differing variable its first and last differing time, the number of differing
+// rows and the values at the first difference (at most kMaxColumns variables).
+bool compareTraces(const std::string& expectedText, const std::string& actualText, const GoldenCompare& g, std::string& report) {
+  constexpr size_t kMaxColumns = 20;
+  TraceTable e, a;
+  std::string why;
+  if (!parseTrace(expectedText, e, why)) return report += "  " + g.golden + ": " + why + "\n", false;
+  if (!parseTrace(actualText, a, why)) return report += "  the run's trace: " + why + "\n", false;
+  bool same = true;
+  // Columns by name: the ones in both are compared.
+  std::vector<std::pair<size_t, size_t>> common;   // (expected index, actual index)
+  std::vector<std::string> onlyE, onlyA;
+  for (size_t i = 0; i < e.names.size(); ++i) {
+    auto it = std::find(a.names.begin(), a.names.end(), e.names[i]);
+    if (it == a.names.end()) onlyE.push_back(e.names[i]);
+    else common.emplace_back(i, static_cast<size_t>(it - a.names.begin()));
+  }
+  for (const std::string& n : a.names)
+    if (std::find(e.names.begin(), e.names.end(), n) == e.names.end()) onlyA.push_back(n);
+  auto joined = [](const std::vector<std::string>& v) {
+    std::string out;
+    for (size_t i = 0; i < v.size() && i < kMaxColumns; ++i) out += (i ? ", " : "") + v[i];
+    if (v.size() > kMaxColumns) out += fmt::format(" and {} more", v.size() - kMaxColumns);
+    return out;
+  };
+  if (!onlyE.empty() || !onlyA.empty()) {
+    same = false;
+    report += "  the traced variables differ from " + g.golden + ":";
+    if (!onlyE.empty()) report += " only in the golden file: " + joined(onlyE) + ";";
+    if (!onlyA.empty()) report += " only in this run: " + joined(onlyA) + ";";
+    report.back() = '\n';
+  }
+  if (e.times.empty() || a.times.empty()) {
+    if (e.times.size() != a.times.size())
+      report += fmt::format("  {} has {} rows, this run {}\n", g.golden, e.times.size(), a.times.size());
+    return same && e.times.size() == a.times.size();
+  }
+
+  struct ColumnDiff {
+    size_t rows = 0;
+    vm::Time first = 0, last = 0;
+    std::string expected, actual;   // at the first difference
+  };
+  std::vector<ColumnDiff> diffs(common.size());
+  size_t rowsDiffering = 0, rowsCompared = 0, onlyInE = 0, onlyInA = 0;
+  vm::Time firstOnlyE = 0, firstOnlyA = 0, firstRow = 0, lastRow = 0;
+  // Over the union of the two traces' times; with held values (sample = "change") a
+  // row stands for every time up to the next one, else each time must be in both.
+  size_t i = 0, j = 0;
+  long ie = -1, ja = -1;
+  while (i < e.times.size() || j < a.times.size()) {
+    const vm::Time t = std::min(i < e.times.size() ? e.times[i] : INT64_MAX, j < a.times.size() ? a.times[j] : INT64_MAX);
+    const bool inE = i < e.times.size() && e.times[i] == t, inA = j < a.times.size() && a.times[j] == t;
+    if (inE) ie = static_cast<long>(i++);
+    if (inA) ja = static_cast<long>(j++);
+    if (!g.held && inE != inA) {
+      if (inE && !onlyInE++) firstOnlyE = t;
+      if (inA && !onlyInA++) firstOnlyA = t;
+      continue;
+    }
+    if (ie < 0 || ja < 0) continue;   // held: before the other's first row (both start at 0)
+    ++rowsCompared;
+    bool rowDiffers = false;
+    for (size_t c = 0; c < common.size(); ++c) {
+      const std::string& ev = e.rows[static_cast<size_t>(ie)][common[c].first];
+      const std::string& av = a.rows[static_cast<size_t>(ja)][common[c].second];
+      if (ev == av) continue;
+      double x, y;
+      auto real = g.realColumn->find(a.names[common[c].second]);
+      if (real != g.realColumn->end() && real->second && numberOf(ev, x) && numberOf(av, y) && withinTolerance(y, x, g.tolerance)) continue;
+      ColumnDiff& d = diffs[c];
+      if (d.rows++ == 0) d.first = t, d.expected = ev, d.actual = av;
+      d.last = t;
+      rowDiffers = true;
+    }
+    if (rowDiffers) {
+      if (rowsDiffering++ == 0) firstRow = t;
+      lastRow = t;
+    }
+  }
+  if (rowsDiffering) {
+    same = false;
+    report += fmt::format("  the trace differs from {} in {} of {} rows, from {} to {}:\n", g.golden, rowsDiffering, rowsCompared,
+                          whenText(firstRow, g.base), whenText(lastRow, g.base));
+    size_t shown = 0, more = 0;
+    for (size_t c = 0; c < common.size(); ++c) {
+      const ColumnDiff& d = diffs[c];
+      if (!d.rows) continue;
+      if (shown == kMaxColumns) {
+        ++more;
+        continue;
+      }
+      ++shown;
+      report += fmt::format("    {}: {} rows differ, first at {}: expected {}, actual {}", a.names[common[c].second], d.rows,
+                            whenText(d.first, g.base), shortValue(d.expected), shortValue(d.actual));
+      report += d.rows > 1 ? fmt::format("; last at {}\n", whenText(d.last, g.base)) : std::string("\n");
+    }
+    if (more) report += fmt::format("    ... and {} more variables differ\n", more);
+  }
+  if (onlyInE || onlyInA) {
+    same = false;
+    report += fmt::format("  {} has {} rows (last at {}), this run {} (last at {})", g.golden, e.times.size(), vm::formatIecTime(e.times.back()),
+                          a.times.size(), vm::formatIecTime(a.times.back()));
+    if (onlyInE) report += fmt::format("; {} rows only in the golden file, the first at {}", onlyInE, vm::formatIecTime(firstOnlyE));
+    if (onlyInA) report += fmt::format("; {} rows only in this run, the first at {}", onlyInA, vm::formatIecTime(firstOnlyA));
+    report += "\n";
+  } else if (g.held && e.times.back() != a.times.back()) {
+    same = false;
+    report += fmt::format("  {} ends at {}, this run at {}\n", g.golden, vm::formatIecTime(e.times.back()), vm::formatIecTime(a.times.back()));
+  }
+  return same;
 }
 
 // ---------------------------------------------------------------- one project
@@ -314,9 +452,18 @@ bool compareTraces(const std::string& expected, const std::string& actual, const
 struct ProjectRun {
   std::string dir;        // as given
   std::string label;      // directory name, printed before /scenario
-  bool update = false;
+  bool update = false, force = false;
+  std::vector<std::string> only;   // --scenario names (empty: all)
+  std::string actualDir;  // --actual: this project's directory for the actual traces
   std::string out;
   unsigned passed = 0, failed = 0;
+};
+
+// What a scenario's run says: the verdict, the note after the PASS/FAIL line and the report.
+struct Outcome {
+  bool pass = false;
+  std::string note;       // ", expected/x.csv written"
+  std::string report;     // indented lines
 };
 
 // A resolved variable, its text and its numeric value (if it has one).
@@ -395,8 +542,24 @@ private:
   std::string path_;
 };
 
-// Runs one scenario; appends the failure lines to `report`.
-bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::string& report) {
+// Writes `text` to `name` inside `root` (never through a symbolic link out of it).
+bool writeInside(const std::string& root, const std::string& name, const std::string& text, std::string& why) {
+  const int fd = vm::openInside(root, name, vm::FileAccess::WriteMakeDirs, why);
+  std::FILE* f = fd < 0 ? nullptr : ::fdopen(fd, "wb");
+  if (!f) {
+    if (fd >= 0) ::close(fd);
+    if (why.empty()) why = "cannot open it";
+    return false;
+  }
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok) return why = std::string("cannot write it: ") + std::strerror(errno), false;
+  return true;
+}
+
+// Runs one scenario (in a process of its own, see runProject): whether it passed; the
+// report and the note go to `outcome`.
+bool runScenario(const ProjectRun& pr, Compilation& comp, const sema::Model& model, const Scenario& sc, Outcome& outcome) {
+  std::string& report = outcome.report;
   // The axes, with the scenario's faults added.
   tool::RunLibraries libs;
   std::string err;
@@ -424,25 +587,52 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
   o.checks = true;
   o.checkPointers = true;   // scenarios run with every pointer checked (docs/security.md)
   std::unique_ptr<codegen::CompiledModule> m;
-  size_t before = comp.diags().diagnostics().size();
-  runWithLargeStack([&] { m = codegen::generate(*comp.model(), comp.sources(), comp.diags(), o, true); });
+  // The scenario's own diagnostics (code generation, runtime faults): the project's
+  // compilation is shared by the scenarios and stays as it was checked.
+  DiagnosticsEngine diags(comp.sources());
+  diags.opts = comp.diags().opts;
+  runWithLargeStack([&] { m = codegen::generate(model, comp.sources(), diags, o, true); });
   auto diagText = [&](size_t from) {
     std::string s;
-    const auto& d = comp.diags().diagnostics();
+    const auto& d = diags.diagnostics();
     for (size_t i = from; i < d.size(); ++i) s += renderText(comp.sources(), d[i]);
     return s;
   };
   if (!m) {
-    report += diagText(before);
+    report += diagText(0);
     return false;
   }
-  vm::Controller ctl(*comp.model(), comp.diags());
+  // The base tick (the controller's: the gcd of the cyclic tasks' intervals, 1 ms
+  // without any) and the fastest task's interval (`cycles` counts its slots).
+  vm::Time base = 0, fastest = 0;
+  for (const codegen::TaskPlan& t : m->tasks)
+    if (t.kind == codegen::TaskPlan::Kind::Cyclic && t.intervalNs > 0) {
+      base = std::gcd(base, t.intervalNs);
+      fastest = fastest ? std::min(fastest, t.intervalNs) : t.intervalNs;
+    }
+  if (!base) base = fastest = vm::kMillisecond;
+  if (sc.sampleEvery) {
+    const vm::Time runEnd = sc.duration ? *sc.duration
+                            : *sc.cycles > static_cast<uint64_t>(INT64_MAX / fastest) ? INT64_MAX
+                                                                                     : static_cast<vm::Time>(*sc.cycles) * fastest;
+    if (*sc.sampleEvery % base != 0) {
+      report += "  " + sc.sampleWhere + ": error: sample = \"" + sc.sampleText + "\": not a multiple of the base cycle (" +
+                vm::formatIecTime(base) + ")\n";
+      return false;
+    }
+    if (*sc.sampleEvery > runEnd) {
+      report += "  " + sc.sampleWhere + ": error: sample = \"" + sc.sampleText + "\": above the scenario's duration (" +
+                std::to_string(*sc.cycles) + " cycles of " + vm::formatIecTime(fastest) + ")\n";
+      return false;
+    }
+  }
+  vm::Controller ctl(model, diags);
   libs.attachTo(ctl);
   if (!ctl.load(std::move(m), err)) {
     report += "  error: " + err + "\n";
     return false;
   }
-  const sema::Layout& layout = *comp.model()->layout;
+  const sema::Layout& layout = *model.layout;
 
   // Stimuli: resolved and parsed before the run.
   struct Stim {
@@ -500,7 +690,7 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
     }
     checks.push_back(std::move(cs));
   }
-  std::vector<bool> realColumn;
+  std::map<std::string, bool> realColumn;
   for (const std::string& v : sc.trace) {
     Probe p;
     if (!makeProbe(ctl, layout, v, p, err)) {
@@ -508,7 +698,7 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
       ok = false;
       continue;
     }
-    realColumn.push_back(p.isReal);
+    realColumn[v] = p.isReal;
   }
   if (!ok) return false;
 
@@ -526,6 +716,9 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
     return false;
   }
   ro.traceOut = tmp.path();
+  ro.traceCsv.tolerance = sc.tolerance;
+  ro.traceCsv.every = sc.sampleEvery.value_or(0);
+  ro.traceCsv.onChange = sc.sampleChange;
   size_t nextStim = 0;
   const codegen::ImageMap& im = ctl.imageMap();
   ro.beforeSlot = [&](vm::Time now) {
@@ -573,14 +766,16 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
     }
   };
   std::ostringstream out, errs;
-  size_t beforeRun = comp.diags().diagnostics().size();
+  size_t beforeRun = diags.diagnostics().size();
   int rc = ctl.run(ro, out, errs);
   bool pass = true;
-  if (rc != 0) {
+  const bool faulted = rc != 0;
+  if (faulted) {
     std::string e = errs.str() + diagText(beforeRun);
     for (const std::string& line : splitLines(e)) report += "  " + line + "\n";
     pass = false;
   }
+  unsigned checksFailed = 0;
 
   // The checks.
   for (const CheckState& cs : checks) {
@@ -592,10 +787,10 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
         const vm::Time runEnd = sc.duration ? std::max(*sc.duration, lastTick) : lastTick;
         if (c.at > runEnd) {
           report += head + ": the run ends at " + vm::formatIecTime(runEnd) + ", before that time\n";
-          pass = false;
+          pass = false, ++checksFailed;
         } else if (!cs.seen || (cs.probe.isReal ? !withinTolerance(cs.actualReal, cs.expectedReal, sc.tolerance) : cs.actualText != cs.expectedText)) {
           report += head + ": actual " + cs.actualText + "\n";
-          pass = false;
+          pass = false, ++checksFailed;
         }
         break;
       }
@@ -604,68 +799,78 @@ bool runScenario(ProjectRun& pr, Compilation& comp, const Scenario& sc, std::str
           std::string why = cs.riseAny ? "it first rises at " + vm::formatIecTime(*cs.riseAny)
                                        : std::string("it never rises (") + (cs.prev ? "TRUE" : "FALSE") + " at the end)";
           report += fmt::format("  check {} rises between {} and {} ({}): {}\n", c.var, vm::formatIecTime(c.from), vm::formatIecTime(c.to), c.where, why);
-          pass = false;
+          pass = false, ++checksFailed;
         }
         break;
       case Check::Bounds:
         if (c.min && cs.any && cs.lo < *c.min) {
           report += fmt::format("  check {} >= {} ({}): actual minimum {} at {}\n", c.var, numText(*c.min), c.where, numText(cs.lo), vm::formatIecTime(cs.loAt));
-          pass = false;
+          pass = false, ++checksFailed;
         }
         if (c.max && cs.any && cs.hi > *c.max) {
           report += fmt::format("  check {} <= {} ({}): actual maximum {} at {}\n", c.var, numText(*c.max), c.where, numText(cs.hi), vm::formatIecTime(cs.hiAt));
-          pass = false;
+          pass = false, ++checksFailed;
         }
         break;
     }
   }
 
   // The golden trace.
-  if (!sc.trace.empty()) {
-    std::string actual;
-    if (!readFile(tmp.path(), actual)) {
-      report += "  error: cannot read the trace '" + tmp.path() + "'\n";
-      return false;
-    }
-    fs::path golden = fs::path(pr.dir) / "expected" / (sc.name + ".csv");
+  if (sc.trace.empty()) return pass;
+  std::string actual;
+  if (!readFile(tmp.path(), actual)) {
+    report += "  error: cannot read the trace '" + tmp.path() + "'\n";
+    return false;
+  }
+  const std::string goldenName = "expected/" + sc.name + ".csv";
+  if (!pr.actualDir.empty()) {
     std::string why;
-    bool exists = false;
-    if (!config::checkRegularFile(golden.string(), why, true, &exists)) {
-      // A directory, FIFO, device or link loop in its place: never opened (a FIFO would block).
-      report += "  error: expected/" + sc.name + ".csv " + why + "\n";
-      return false;
-    }
-    if (pr.update) {
-      // Never outside the project: a symbolic link (expected/ itself, or a golden file)
-      // leading out of it is refused (vm/FileSandbox.h).
-      std::string why;
-      const int fd = vm::openInside(pr.dir, "expected/" + sc.name + ".csv", vm::FileAccess::WriteMakeDirs, why);
-      std::FILE* f = fd < 0 ? nullptr : ::fdopen(fd, "wb");
-      if (!f) {
-        if (fd >= 0) ::close(fd);
-        report += "  error: expected/" + sc.name + ".csv not written: " + (why.empty() ? "cannot open it" : why) + "\n";
-        pass = false;
-      } else {
-        const bool ok = std::fwrite(actual.data(), 1, actual.size(), f) == actual.size();
-        if (std::fclose(f) != 0 || !ok) {
-          report += "  error: cannot write '" + golden.string() + "'\n";
-          pass = false;
-        }
-      }
+    if (writeInside(pr.actualDir, sc.name + ".csv", actual, why)) {
+      outcome.note += ", actual trace " + (fs::path(pr.actualDir) / (sc.name + ".csv")).string();
     } else {
-      std::string expected;
-      if (!exists) {
-        report += "  no expected/" + sc.name + ".csv; run stc test --update\n";
-        pass = false;
-      } else if (!config::readRegularFile(golden.string(), expected, why, uint64_t(1) << 32)) {
-        report += "  error: expected/" + sc.name + ".csv " + why + "\n";
-        pass = false;
-      } else if (!compareTraces(expected, actual, realColumn, sc.tolerance, report)) {
-        pass = false;
-      }
+      report += "  error: the actual trace " + sc.name + ".csv not written to '" + pr.actualDir + "': " + why + "\n";
+      pass = false;
     }
   }
-  return pass;
+  fs::path golden = fs::path(pr.dir) / goldenName;
+  std::string why;
+  bool exists = false;
+  if (!config::checkRegularFile(golden.string(), why, true, &exists)) {
+    // A directory, FIFO, device or link loop in its place: never opened (a FIFO would block).
+    report += "  error: " + goldenName + " " + why + "\n";
+    return false;
+  }
+  if (pr.update) {
+    if (!pass && !pr.force) {
+      // A failing scenario is not blessed silently: its trace shows the failure.
+      std::string reasons;
+      if (faulted) reasons = "it faults";
+      if (checksFailed) reasons += (reasons.empty() ? "" : " and ") + std::string(checksFailed == 1 ? "1 check fails" : std::to_string(checksFailed) + " checks fail");
+      if (reasons.empty()) reasons = "it fails";
+      report += "  " + goldenName + " not written: " + reasons + " (stc test --update --force writes it anyway)\n";
+      return false;
+    }
+    // Never outside the project: a symbolic link (expected/ itself, or a golden file)
+    // leading out of it is refused (vm/FileSandbox.h).
+    if (writeInside(pr.dir, goldenName, actual, why)) {
+      outcome.note += ", " + goldenName + " written" + (pass ? "" : " (--force)");
+    } else {
+      report += "  error: " + goldenName + " not written: " + why + "\n";
+      pass = false;
+    }
+    return pass;
+  }
+  std::string expected;
+  if (!exists) {
+    report += "  no " + goldenName + "; run stc test --update\n";
+    return false;
+  }
+  if (!config::readRegularFile(golden.string(), expected, why, uint64_t(1) << 32)) {
+    report += "  error: " + goldenName + " " + why + "\n";
+    return false;
+  }
+  GoldenCompare g{&realColumn, sc.tolerance, base, sc.sampleChange, goldenName};
+  return compareTraces(expected, actual, g, report) && pass;
 }
 
 std::string label(const std::string& dir) {
@@ -673,6 +878,75 @@ std::string label(const std::string& dir) {
   fs::path p = fs::weakly_canonical(fs::absolute(dir), ec);
   std::string name = p.filename().string();
   return name.empty() ? dir : name;
+}
+
+bool writeAll(int fd, const std::string& text) {
+  for (size_t done = 0; done < text.size();) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<size_t>(n);
+  }
+  return true;
+}
+
+// Runs `fn` in a child process (fork, no exec: it shares the parsed project as it
+// was at the fork) and takes its Outcome back through a pipe, so nothing the run
+// does (a runtime fault, a crash of stc itself, a leak) reaches the next scenario.
+// A child that dies is this scenario's FAIL with the signal.  Without a process
+// (fork refused), the scenario runs here.
+void runIsolated(Outcome& o, const std::function<void(Outcome&)>& fn) {
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) {
+    fn(o);
+    return;
+  }
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    fn(o);
+    return;
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    Outcome mine;
+    fn(mine);
+    // "P"/"F", the note's length and text, then the report.
+    const std::string msg = std::string(mine.pass ? "P" : "F") + std::to_string(mine.note.size()) + ":" + mine.note + mine.report;
+    std::fflush(nullptr);
+    ::_exit(writeAll(fds[1], msg) ? 0 : 1);
+  }
+  ::close(fds[1]);
+  std::string msg;
+  char buf[65536];
+  for (;;) {
+    const ssize_t n = ::read(fds[0], buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    msg.append(buf, static_cast<size_t>(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  const size_t colon = msg.find(':');
+  size_t noteLen = 0;
+  const bool wellFormed = !msg.empty() && (msg[0] == 'P' || msg[0] == 'F') && colon != std::string::npos && colon > 1 && colon <= 12 &&
+                          std::all_of(msg.begin() + 1, msg.begin() + static_cast<long>(colon), [](char c) { return c >= '0' && c <= '9'; }) &&
+                          (noteLen = std::stoul(msg.substr(1, colon - 1))) <= msg.size() - colon - 1;
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && wellFormed) {
+    o.pass = msg[0] == 'P';
+    o.note = msg.substr(colon + 1, noteLen);
+    o.report = msg.substr(colon + 1 + noteLen);
+    return;
+  }
+  o.pass = false;
+  if (WIFSIGNALED(status))
+    o.report += fmt::format("  error: the scenario's process died (signal {}: {})\n", WTERMSIG(status), ::strsignal(WTERMSIG(status)));
+  else
+    o.report += fmt::format("  error: the scenario's process ended with status {} without a report\n", WIFEXITED(status) ? WEXITSTATUS(status) : -1);
 }
 
 void runProject(ProjectRun& pr) {
@@ -692,8 +966,11 @@ void runProject(ProjectRun& pr) {
   }
   if (fs::is_directory(scenDir, ec))
     for (const auto& e : fs::directory_iterator(scenDir, ec))
-      if (e.path().extension() == ".toml") files.push_back(e.path());
+      if (e.path().extension() == ".toml" &&
+          (pr.only.empty() || std::find(pr.only.begin(), pr.only.end(), e.path().stem().string()) != pr.only.end()))
+        files.push_back(e.path());
   std::sort(files.begin(), files.end());
+  if (files.empty() && !pr.only.empty()) return;   // --scenario names none of this project's
   if (files.empty()) {
     // Nothing to run, but the project file is still checked.
     ProjectConfig cfg;
@@ -717,26 +994,27 @@ void runProject(ProjectRun& pr) {
     if (!compiled)
       for (const Diagnostic& d : comp.diags().diagnostics()) compileErrors += renderText(comp.sources(), d);
   }
+  // Taken once: the scenarios never add to the compilation's diagnostics.
+  const sema::Model* model = compiled ? comp.model() : nullptr;
   for (const fs::path& f : files) {
     auto t0 = std::chrono::steady_clock::now();
     Scenario sc;
-    std::string report, err;
-    bool pass = false;
+    Outcome o;
+    std::string err;
     std::string shown = "scenarios/" + f.filename().string();
     if (!loadScenario(f, shown, sc, err)) {
-      report = "  " + err + "\n";
+      o.report = "  " + err + "\n";
       sc.name = f.stem().string();
-    } else if (!compiled) {
-      report = "  the project does not compile:\n";
-      for (const std::string& line : splitLines(compileErrors)) report += "  " + line + "\n";
+    } else if (!model) {
+      o.report = "  the project does not compile:\n";
+      for (const std::string& line : splitLines(compileErrors)) o.report += "  " + line + "\n";
     } else {
-      pass = runScenario(pr, comp, sc, report);
+      runIsolated(o, [&](Outcome& out) { out.pass = runScenario(pr, comp, *model, sc, out); });
     }
     double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    pr.out += fmt::format("{} {}/{} ({:.2f} s){}\n", pass ? "PASS" : "FAIL", pr.label, sc.name, secs,
-                          pass && pr.update && !sc.trace.empty() ? ", expected/" + sc.name + ".csv written" : "");
-    pr.out += report;
-    ++(pass ? pr.passed : pr.failed);
+    pr.out += fmt::format("{} {}/{} ({:.2f} s){}\n", o.pass ? "PASS" : "FAIL", pr.label, sc.name, secs, o.note);
+    pr.out += o.report;
+    ++(o.pass ? pr.passed : pr.failed);
   }
 }
 
@@ -758,6 +1036,9 @@ int runTest(const TestArgs& args) {
     pr.dir = args.one;
     pr.label = label(args.one);
     pr.update = args.update;
+    pr.force = args.force;
+    pr.only = args.scenarios;
+    pr.actualDir = args.actual;
     runProject(pr);
     std::fwrite(pr.out.data(), 1, pr.out.size(), stdout);
     std::fflush(stdout);
@@ -770,6 +1051,60 @@ int runTest(const TestArgs& args) {
     if (!fs::is_directory(d, ec) || !fs::exists(fs::symlink_status(fs::path(d) / "project.toml", ec))) {
       std::fprintf(stderr, "stc: error: '%s' is not a project directory (no project.toml)\n", d.c_str());
       return 2;
+    }
+  }
+  if (args.force && !args.update) {
+    std::fprintf(stderr, "stc: error: --force only goes with --update (it writes the golden files of failing scenarios)\n");
+    return 2;
+  }
+  // --scenario: each name is a scenario of at least one of the projects.
+  if (!args.scenarios.empty()) {
+    std::vector<std::string> known;
+    for (const std::string& d : dirs) {
+      std::error_code ec;
+      for (const auto& e : fs::directory_iterator(fs::path(d) / "scenarios", ec))
+        if (e.path().extension() == ".toml") known.push_back(e.path().stem().string());
+    }
+    for (const std::string& n : args.scenarios)
+      if (std::find(known.begin(), known.end(), n) == known.end()) {
+        const std::string hint = config::closest(n, known);
+        std::fprintf(stderr, "stc: error: --scenario %s: no scenarios/%s.toml in %s%s\n", n.c_str(), n.c_str(),
+                     dirs.size() == 1 ? ("'" + dirs[0] + "'").c_str() : "the projects given",
+                     hint.empty() ? "" : ("; did you mean '" + hint + "'?").c_str());
+        return 2;
+      }
+  }
+  // --actual DIR: created; with several projects one subdirectory per project. Never a
+  // project's expected/ (or a directory in it): the golden files stay as they are.
+  std::vector<std::string> actualDirs(dirs.size());
+  if (!args.actual.empty()) {
+    std::error_code ec;
+    const fs::path root = fs::weakly_canonical(fs::absolute(args.actual, ec), ec);
+    std::vector<std::string> labels;
+    for (size_t i = 0; i < dirs.size(); ++i) {
+      const std::string l = label(dirs[i]);
+      if (dirs.size() > 1 && std::find(labels.begin(), labels.end(), l) != labels.end()) {
+        std::fprintf(stderr, "stc: error: --actual: two projects are named '%s'; give them one at a time\n", l.c_str());
+        return 2;
+      }
+      labels.push_back(l);
+      const fs::path dir = dirs.size() > 1 ? root / l : root;
+      for (const std::string& d : dirs) {
+        const fs::path expected = fs::weakly_canonical(fs::absolute(fs::path(d) / "expected", ec), ec);
+        const auto rel = dir.lexically_relative(expected);
+        if (!rel.empty() && *rel.begin() != "..") {
+          std::fprintf(stderr, "stc: error: --actual %s: this is %s, where the golden files are; choose another directory\n",
+                       args.actual.c_str(), rel == "." ? (d + "/expected").c_str() : ("inside " + d + "/expected").c_str());
+          return 2;
+        }
+      }
+      fs::create_directories(dir, ec);
+      if (ec || !fs::is_directory(dir)) {
+        std::fprintf(stderr, "stc: error: --actual %s: cannot create the directory '%s'%s\n", args.actual.c_str(), dir.string().c_str(),
+                     ec ? (": " + ec.message()).c_str() : "");
+        return 2;
+      }
+      actualDirs[i] = dir.string();
     }
   }
   unsigned jobs = args.jobs ? args.jobs : std::max(1u, static_cast<unsigned>(sysconf(_SC_NPROCESSORS_ONLN)));
@@ -793,6 +1128,9 @@ int runTest(const TestArgs& args) {
       k.outFile = buf.data();
       std::vector<std::string> argvS = {"stc", "test", "--one", dirs[started]};
       if (args.update) argvS.push_back("--update");
+      if (args.force) argvS.push_back("--force");
+      for (const std::string& n : args.scenarios) argvS.insert(argvS.end(), {"--scenario", n});
+      if (!actualDirs[started].empty()) argvS.insert(argvS.end(), {"--actual", actualDirs[started]});
       pid_t pid = fork();
       if (pid == 0) {
         dup2(fd, STDOUT_FILENO);

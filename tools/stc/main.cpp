@@ -506,7 +506,10 @@ int main(int argc, char** argv) {
   tools::TestArgs ta;
   CLI::App* test = app.add_subcommand("test", "Run the scenarios of projects and compare them with their golden traces");
   test->add_option("paths", ta.paths, "Project directories (default: .)");
-  test->add_flag("--update", ta.update, "Write the golden files expected/<scenario>.csv from this run");
+  test->add_flag("--update", ta.update, "Write the golden files expected/<scenario>.csv from this run (not of a failing scenario)");
+  test->add_flag("--force", ta.force, "With --update: also write the golden files of scenarios whose checks fail or that fault");
+  test->add_option("--scenario", ta.scenarios, "Run only the scenario NAME (scenarios/NAME.toml; repeatable)")->allow_extra_args(false);
+  test->add_option("--actual", ta.actual, "Write each scenario's actual trace to DIR/<scenario>.csv (created; never a golden file)");
   test->add_option("-j,--jobs", ta.jobs, "Run N projects in parallel (default: one per core)");
   test->add_option("--one", ta.one, "Run one project in this process (used by the parallel runner)")->group("");
   plot::PlotCommand pc;

@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -140,6 +142,109 @@ TEST_F(TraceTest, IdenticalInputGivesIdenticalBytes) {
   std::string a = write("a.vcd"), b = write("b.vcd");
   EXPECT_EQ(a, b);
   EXPECT_GT(a.size(), 10'000u);
+}
+
+// The golden traces' REAL form (stc test): the fewest digits within half the tolerance.
+TEST(TraceRealTest, ShortestWithinTolerance) {
+  EXPECT_EQ(formatTraceReal(-7.105427357601197E-13, false, 1e-9), "0.0");   // noise around a zero
+  EXPECT_EQ(formatTraceReal(9.9e-10, false, 1e-9), "0.0");
+  EXPECT_EQ(formatTraceReal(-0.0, false, 0), "0.0");
+  EXPECT_EQ(formatTraceReal(0.0, false, 1e-9), "0.0");
+  EXPECT_EQ(formatTraceReal(450.0, false, 1e-9), "450.0");
+  EXPECT_EQ(formatTraceReal(449.99999999999994, false, 1e-9), "450.0");
+  EXPECT_EQ(formatTraceReal(0.1 + 0.2, false, 1e-9), "0.3");
+  EXPECT_EQ(formatTraceReal(-123.456789012345, false, 1e-9), "-123.456789");
+  EXPECT_EQ(formatTraceReal(-123.456789012345, false, 1e-3), "-123.5");
+  EXPECT_EQ(formatTraceReal(1.2345678901234567e20, false, 1e-9), "1.23456789E+20");
+  EXPECT_EQ(formatTraceReal(-2.5e-7, false, 1e-9), "-2.5E-07");
+  EXPECT_EQ(formatTraceReal(1.0 / 3, false, 1e-9), "0.333333333");
+  // Tolerance 0: the exact literal, as stc run writes it.
+  EXPECT_EQ(formatTraceReal(1.0 / 3, false, 0), "0.3333333333333333");
+  EXPECT_EQ(formatTraceReal(1e-12, false, 0), "1.0E-12");
+  // A REAL: its own literal when that is close enough read as an LREAL, else more digits.
+  EXPECT_EQ(formatTraceReal(static_cast<float>(0.1), true, 0), "0.1");
+  EXPECT_EQ(formatTraceReal(static_cast<float>(0.1), true, 1e-6), "0.1");
+  EXPECT_EQ(formatTraceReal(static_cast<float>(0.1), true, 1e-9), "0.100000001");
+  EXPECT_EQ(formatTraceReal(static_cast<float>(1.5), true, 1e-9), "1.5");
+  // Not numbers.
+  EXPECT_EQ(formatTraceReal(std::nan(""), false, 1e-9), "NaN");
+  EXPECT_EQ(formatTraceReal(HUGE_VAL, false, 1e-9), "Inf");
+  EXPECT_EQ(formatTraceReal(-HUGE_VAL, true, 1e-9), "-Inf");
+  EXPECT_EQ(formatTraceReal(1e300, false, 1e-9), "1.0E+300");
+  EXPECT_EQ(formatTraceReal(-1.7976931348623157e308, false, 0), "-1.7976931348623157E+308");
+}
+
+// Every value, written and read back, compares equal to itself again under stc test's
+// rule |actual - expected| <= tolerance * max(1, |expected|), and no shorter form would
+// be within half the tolerance.
+TEST(TraceRealTest, RoundTripWithinTolerance) {
+  uint64_t seed = 12345;
+  auto next = [&] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return seed >> 11;
+  };
+  for (double tol : {1e-12, 1e-9, 1e-6, 1e-3, 0.5}) {
+    for (int i = 0; i < 20000; ++i) {
+      const double mant = static_cast<double>(next()) / static_cast<double>(1ull << 53) * 2 - 1;
+      const int exp10 = static_cast<int>(next() % 60) - 30;
+      const double v = mant * std::pow(10.0, exp10);
+      const std::string s = formatTraceReal(v, false, tol);
+      const double x = std::strtod(s.c_str(), nullptr);
+      if (std::fabs(v) < tol) {
+        EXPECT_EQ(s, "0.0") << v;
+        continue;
+      }
+      ASSERT_LE(std::fabs(x - v), tol * std::max(1.0, std::fabs(v)) / 2) << v << " " << tol << " " << s;
+      ASSERT_LE(std::fabs(v - x), tol * std::max(1.0, std::fabs(x))) << v << " " << tol << " " << s;
+      // Minimal: one significant digit fewer is not close enough.
+      std::string written = s.substr(0, s.find('E'));
+      std::string sig;
+      for (char c : written)
+        if (c >= '0' && c <= '9') sig += c;
+      sig.erase(0, sig.find_first_not_of('0'));
+      sig.erase(sig.find_last_not_of('0') + 1);
+      const size_t significant = sig.size();
+      if (significant > 1) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.*e", static_cast<int>(significant) - 2, v);
+        ASSERT_GT(std::fabs(std::strtod(buf, nullptr) - v), tol * std::max(1.0, std::fabs(v)) / 2) << v << " " << s << " " << buf;
+      }
+    }
+  }
+}
+
+TEST_F(TraceTest, CsvSampledEvery) {
+  std::string error;
+  CsvTraceOptions o;
+  o.tolerance = 1e-9;
+  o.every = 10'000'000;   // 10 ms
+  auto w = TraceWriter::create(path("s.csv"), {{"n", TraceColumn::Int, 32}, {"x", TraceColumn::Real, 64}}, error, o);
+  ASSERT_TRUE(w) << error;
+  for (int i = 0; i <= 25; ++i) w->sample(i * 1'000'000, {integer(i, 32), real(i * 0.1 + (i == 10 ? -7.105427357601197E-15 : 0.0), "x")});
+  ASSERT_TRUE(w->finish(error)) << error;
+  EXPECT_EQ(read(path("s.csv")), "time,n,x\n0,0,0.0\n0.01,10,1.0\n0.02,20,2.0\n");
+}
+
+TEST_F(TraceTest, CsvSampledOnChange) {
+  std::string error;
+  CsvTraceOptions o;
+  o.tolerance = 1e-9;
+  o.onChange = true;
+  auto w = TraceWriter::create(path("c.csv"), {{"b", TraceColumn::Bool}, {"x", TraceColumn::Real, 64}}, error, o);
+  ASSERT_TRUE(w) << error;
+  // x changes below the tolerance at 2 ms (the same as written: no row), b at 3 ms.
+  const double xs[] = {1.5, 1.5, 1.5 + 1e-12, 1.5, 1.5, 2.0, 2.0};
+  const bool bs[] = {false, false, false, true, true, true, true};
+  for (int i = 0; i < 7; ++i) w->sample(i * 1'000'000, {boolean(bs[i]), real(xs[i], "x")});
+  ASSERT_TRUE(w->finish(error)) << error;
+  // The first row, the changes, and the last sample (unchanged, but it ends the trace).
+  EXPECT_EQ(read(path("c.csv")), "time,b,x\n0,FALSE,1.5\n0.003,TRUE,1.5\n0.005,TRUE,2.0\n0.006,TRUE,2.0\n");
+  // The last sample is not repeated when it was a change.
+  auto w2 = TraceWriter::create(path("d.csv"), {{"b", TraceColumn::Bool}}, error, o);
+  w2->sample(0, {boolean(false)});
+  w2->sample(1'000'000, {boolean(true)});
+  ASSERT_TRUE(w2->finish(error)) << error;
+  EXPECT_EQ(read(path("d.csv")), "time,b\n0,FALSE\n0.001,TRUE\n");
 }
 
 TEST_F(TraceTest, Errors) {
