@@ -21,6 +21,7 @@
 #include "vm/Time.h"
 #include "vm/testlib/TestLib.h"
 #include "tools/stc/Libraries.h"
+#include "tools/stc/Init.h"
 #include "tools/stc/TestCommand.h"
 #include "tools/stc/Plot.h"
 
@@ -514,6 +515,11 @@ int main(int argc, char** argv) {
   test->add_option("--one", ta.one, "Run one project in this process (used by the parallel runner)")->group("");
   plot::PlotCommand pc;
   pc.add(app);
+  tools::InitArgs ia;
+  CLI::App* init = app.add_subcommand("init", "Make a new project that stc test passes at once (project.toml, GVL, PROGRAM, task, scenario)");
+  init->add_option("name", ia.path, "The new project's directory (must not exist, or be empty)")->required();
+  init->add_option("--lib", ia.lib, "The instruction set (default codesys_sm3)")->check(CLI::IsMember(availableLibraries()));
+  init->add_option("--axes", ia.axes, "Simulated servo axes Axis1..AxisN (0 .. 16, default 1)")->check(CLI::Range(0u, tools::kMaxInitAxes));
 
   try {
     app.parse(argc, argv);
@@ -534,5 +540,6 @@ int main(int argc, char** argv) {
     if (run->get_option(o)->count() > 0) ra.given.insert(o);
   if (run->parsed()) return runRun(ra);
   if (test->parsed()) return tools::runTest(ta);
+  if (init->parsed()) return tools::runInit(ia);
   return 2;
 }
