@@ -1,5 +1,6 @@
 #include "vm/Controller.h"
 
+#include <algorithm>
 #include <csignal>
 #include <cstring>
 #include <functional>
@@ -146,7 +147,8 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
       const sema::Type* u = t->underlying();
       TraceColumn c;
       c.name = w;
-      if (u->isBool()) c.kind = TraceColumn::Bool, c.bits = 1;
+      if (t->kind == sema::TypeKind::Enum) c.kind = TraceColumn::Enum;   // by its value names, not its base integer
+      else if (u->isBool()) c.kind = TraceColumn::Bool, c.bits = 1;
       else if (u->isReal()) c.kind = TraceColumn::Real, c.bits = u->bits();
       else if (u->isElementary() && !u->isString()) c.kind = TraceColumn::Int, c.bits = u->bits(), c.isSigned = u->isSignedInt() || u->isDuration();
       else c.kind = TraceColumn::Text;
@@ -330,8 +332,11 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   bool exitFaulted = !callOutsideTasks(fbExit_, false, exitFault);
   if (!opts.retainFile.empty()) retainSave(opts.retainFile);
   if (trace) {
+    // The run ends with its last tick (at the limit, or earlier when stopped).
     std::string e;
-    if (!trace->finish(e)) err << "stc: error: " << e << "\n";
+    Time end = sched_->now() + sched_->baseTick();
+    if (limit.until) end = std::min(end, *limit.until);
+    if (!trace->finish(end, e)) err << "stc: error: " << e << "\n";
   }
   for (size_t k = 0; k < watches.size(); ++k)
     out << opts.watches[k] << " = " << valueText(watches[k]) << "\n";
