@@ -226,6 +226,111 @@ def case_run():
     print("ok")
 
 
+def panel_ticks(root):
+    """{panel title: [y tick labels]}."""
+    out = {}
+    for g in groups(root, "panel"):
+        title = texts(g, "panel-title")[0]
+        out[title] = texts(g, "ytick")
+    return out
+
+
+def case_ticks():
+    """Nice ticks for any range, integer counters at integers, clean times."""
+    header = ["Axis1.fActVelocity", "Axis1.fActPosition", "MAIN.count", "MAIN.k", "MAIN.tiny", "MAIN.huge"]
+    rows = []
+    for i in range(420):
+        t = i / 100
+        rows.append([seconds(i, 10), real(406 * math.sin(2 * math.pi * t / 4.2) if i != 105 else 406.0),
+                     real(-12 - 938 * t / 4.19), str(i % 2), "3.7", real(1e-7 * t / 4.19), real(1e9 * t / 4.19)])
+    rows.append(["4.199999999", real(0.0), "-950.0", "1", "3.7", "1.0E-07", "1.0E+09"])
+    csv = write_csv("ticks.csv", header, rows)
+    svg = os.path.join(TMP, "ticks.svg")
+    rc, out = stc("plot", csv, "-o", svg)
+    expect(rc == 0, f"exit {rc}: {out}")
+    root = parse(svg)
+    ticks = panel_ticks(root)
+    for title, labels in ticks.items():
+        expect(3 <= len(labels) <= 10, f"{title}: {len(labels)} ticks {labels}")
+        expect(len(set(labels)) == len(labels), f"{title}: labels repeat {labels}")
+    expect(ticks["velocity [u/s]"] == ["-400", "-200", "0", "200", "400"], f"symmetric: {ticks}")
+    expect(all(l.startswith("-") or l == "0" for l in ticks["position [u]"]), f"negative-only: {ticks}")
+    expect(ticks["MAIN.count"] == ["0", "1", "2"], f"integer counter: {ticks['MAIN.count']}")
+    k = [float(x) for x in ticks["MAIN.k"]]
+    expect(min(k) < 3.7 < max(k), f"constant 3.7: {k}")
+    tiny = [float(x) for x in ticks["MAIN.tiny"]]
+    expect(max(tiny) <= 1.2e-7 and max(tiny) >= 0.5e-7, f"tiny: {ticks['MAIN.tiny']}")
+    huge = [float(x) for x in ticks["MAIN.huge"]]
+    expect(max(huge) >= 0.5e9, f"huge: {ticks['MAIN.huge']}")
+    sub = texts(root, "subtitle")[0]
+    expect(sub.endswith("0 s to 4.2 s"), f"subtitle {sub}")
+    # Any data, no crash: one row, NaN, Inf, constant.
+    for name, rows in [("one.csv", [["0", "1.5", "7"]]),
+                       ("nan.csv", [["0", "NaN", "1"], ["0.1", "NaN", "2"]]),
+                       ("inf.csv", [["0", "Inf", "-1"], ["0.1", "-Inf", "1"], ["0.2", "1.0E+308", "2"]]),
+                       ("flat.csv", [["0", "0.0", "0"], ["0.1", "0.0", "0"]])]:
+        path = write_csv(name, ["MAIN.x", "MAIN.n"], rows)
+        rc, out = stc("plot", path, "-o", os.path.join(TMP, name + ".svg"))
+        expect(rc == 0, f"{name}: exit {rc}: {out}")
+        for title, labels in panel_ticks(parse(os.path.join(TMP, name + ".svg"))).items():
+            expect(len(set(labels)) == len(labels) and len(labels) >= 2, f"{name} {title}: {labels}")
+    print("ok")
+
+
+def case_legend():
+    """State bands show their values with their colours; BOOL lanes what high and low mean."""
+    csv = motion_trace()
+    svg = os.path.join(TMP, "legend.svg")
+    rc, out = stc("plot", csv, "-o", svg)
+    expect(rc == 0, f"exit {rc}: {out}")
+    root = parse(svg)
+    legends = groups(root, "state-legend")
+    expect([g.get("data-var") for g in legends] == ["MAIN.state"], "one state legend")
+    expect(texts(legends[0], "state-legend-entry") == ["Idle", "Moving", "Done"], texts(legends[0], "state-legend-entry"))
+    expect(texts(legends[0], "state-legend-type") == ["E_State:"], texts(legends[0], "state-legend-type"))
+    swatch = {t: r.get("fill") for t, r in zip(texts(legends[0], "state-legend-entry"),
+                                               [r for r in legends[0].iter(NS + "rect") if r.get("class") == "swatch"])}
+    band = groups(root, "band")[0]
+    for r in band.iter(NS + "rect"):
+        if r.get("class") == "state":
+            name = r.find(NS + "title").text.split("#")[1]
+            expect(swatch[name] == r.get("fill"), f"{name}: band {r.get('fill')} legend {swatch[name]}")
+    expect(texts(groups(root, "bool-legend")[0], "bool-legend-entry") == ["TRUE", "FALSE"], "BOOL legend")
+    # Many values: at most three rows, the rest counted.
+    rows = [[seconds(i, 10), f"'msg{i}'"] for i in range(300)]
+    many = write_csv("many.csv", ["MAIN.text"], rows)
+    rc, out = stc("plot", many, "-o", svg)
+    expect(rc == 0, f"exit {rc}: {out}")
+    g = groups(parse(svg), "state-legend")[0]
+    more = texts(g, "state-legend-more")
+    expect(len(more) == 1 and more[0].startswith("+") and more[0].endswith(" more"), f"more {more}")
+    shown = len(texts(g, "state-legend-entry"))
+    expect(shown + int(more[0][1:].split()[0]) == 300, f"{shown} shown, {more}")
+    print("ok")
+
+
+def case_units():
+    """The axes' units from the trace's #units line label the panels."""
+    path = os.path.join(TMP, "units.csv")
+    with open(path, "w") as f:
+        f.write("# a comment\n#units,mm,mm,,deg\n")
+        f.write("time,Axis1.fActPosition,Axis1.fActVelocity,MAIN.count,Rot.fActPosition\n")
+        for i in range(100):
+            f.write(f"{seconds(i, 10)},{real(i * 0.5)},{real(50.0)},{i},{real(i * 3.6)}\n")
+    svg = os.path.join(TMP, "units.svg")
+    rc, out = stc("plot", path, "-o", svg)
+    expect(rc == 0, f"exit {rc}: {out}")
+    root = parse(svg)
+    titles = [texts(g, "panel-title")[0] for g in groups(root, "panel")]
+    expect(titles == ["position [mm]", "velocity [mm/s]", "MAIN.count", "position [deg]"], f"titles {titles}")
+    # A #units line that does not match the header.
+    with open(path, "w") as f:
+        f.write("#units,mm\ntime,A,B\n0,1,2\n")
+    rc, out = stc("plot", path, "-o", svg)
+    expect(rc == 1 and "units.csv:1" in out and "#units" in out, f"bad #units: {rc} {out}")
+    print("ok")
+
+
 # --xy: path plots.  A circle of radius 10 around (5, -3), once round in 2 s (1 ms
 # rows): the commanded path, and an "actual" one lagging 0.1 rad with one NaN row.
 CX, CY, R, LAG = 5.0, -3.0, 10.0, 0.1
@@ -589,4 +694,5 @@ def case_gcode_errors():
 {"structure": case_structure, "vars-window": case_vars_window, "downsample": case_downsample,
  "errors": case_errors, "run": case_run, "xy-circle": case_xy_circle, "xy-window": case_xy_window,
  "xy-errors": case_xy_errors, "run-xy": case_run_xy, "gcode-path": case_gcode_path,
- "gcode-trace": case_gcode_trace, "gcode-errors": case_gcode_errors}[CASE]()
+ "gcode-trace": case_gcode_trace, "gcode-errors": case_gcode_errors, "ticks": case_ticks, "legend": case_legend,
+ "units": case_units}[CASE]()

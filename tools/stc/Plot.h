@@ -40,12 +40,15 @@ struct PlotOptions {
 // A trace as read from CSV: the time column in seconds, the other columns as text.
 struct TraceTable {
   std::vector<std::string> names;
+  std::vector<std::string> units;   // per column: its axis unit from a `#units` line ("" none)
   std::vector<double> time;
   std::vector<std::vector<std::string>> columns;   // columns[c][row]
 };
 
 // Reads a trace CSV.  False with `error` set if the file cannot be read
-// (`missing` true) or is not a trace (no `time` column, bad rows).
+// (`missing` true) or is not a trace (no `time` column, bad rows).  Lines
+// before the header that start with '#' are comments; `#units,U1,U2,...`
+// gives the columns' units.
 bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, bool& missing);
 
 // The SVG document for `trace` (options.vars and options.xy must name existing columns).
@@ -85,6 +88,9 @@ struct PlotCommand {
   CLI::App* cmd = nullptr;
   void add(CLI::App& app);
   int run() const;
+
+private:
+  bool parseWindow(PlotOptions& o, std::string& error) const;   // --from/--to into o
 };
 
 }  // namespace stc::plot
