@@ -70,6 +70,15 @@ class CsvWriter final : public TraceWriter {
 public:
   CsvWriter(std::unique_ptr<Output> out, std::vector<TraceColumn> columns) : out_(std::move(out)) {
     std::string& b = out_->buffer();
+    // The axes' units, when a column has one: `#units,,mm,...` lines up with the header.
+    if (std::any_of(columns.begin(), columns.end(), [](const TraceColumn& c) { return !c.unit.empty(); })) {
+      b += "#units";
+      for (const TraceColumn& c : columns) {
+        b += ',';
+        appendCsvField(b, c.unit);
+      }
+      b += '\n';
+    }
     b += "time";
     for (const TraceColumn& c : columns) {
       b += ',';

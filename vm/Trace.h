@@ -20,6 +20,10 @@ struct TraceColumn {
   enum Kind { Bool, Int, Real, Text, Enum } kind;
   unsigned bits = 0;        // Int: the width (1..64; 0 means 64)
   bool isSigned = false;
+  // The unit of measure of the axis the variable belongs to (project.toml
+  // [[axis]] unit); empty: none configured.  CSV: a `#units` line before the
+  // header when a column has one (docs/projects.md, "Traces and plots").
+  std::string unit = {};
 };
 
 struct TraceValue {

@@ -328,6 +328,27 @@ def case_units():
         f.write("#units,mm\ntime,A,B\n0,1,2\n")
     rc, out = stc("plot", path, "-o", svg)
     expect(rc == 1 and "units.csv:1" in out and "#units" in out, f"bad #units: {rc} {out}")
+    # End to end: project.toml [[axis]] unit -> stc run's trace -> stc plot.
+    proj = os.path.join(TMP, "unitproj")
+    os.makedirs(os.path.join(proj, "src"))
+    shutil.copy(os.path.join(SRC, "tests/run/motion_move_absolute.st"), os.path.join(proj, "src", "main.st"))
+
+    def project(unit):
+        with open(os.path.join(proj, "project.toml"), "w") as f:
+            f.write(f'[project]\nname = "unitproj"\nlibraries = ["codesys_sm3"]\n\n[[axis]]\nname = "Axis1"\nunit = {unit}\n')
+    project('"mm"')
+    csv = os.path.join(TMP, "unitrun.csv")
+    rc, out = stc("run", proj, "--for", "100ms", "--trace", "Axis1.fSetPosition,MAIN.cycle,axis1.fSetVelocity",
+                  "--trace-out", csv, "--plot", svg)
+    expect(rc == 0, f"run: {rc} {out}")
+    first = open(csv).readline().strip()
+    expect(first == "#units,mm,,mm", f"units line {first}")
+    titles = [texts(g, "panel-title")[0] for g in groups(parse(svg), "panel")]
+    expect("position [mm]" in titles and "velocity [mm/s]" in titles, f"titles {titles}")
+    for bad in ['""', '"m m"', '"a,b"', '"seventeen_chars_x"', "5"]:
+        project(bad)
+        rc, out = stc("run", proj, "--for", "10ms", "--trace", "Axis1.fSetPosition", "--trace-out", csv)
+        expect(rc != 0 and "unit" in out and "project.toml:7" in out, f"unit = {bad}: {rc} {out}")
     print("ok")
 
 

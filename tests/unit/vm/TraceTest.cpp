@@ -152,6 +152,17 @@ TEST_F(TraceTest, VcdScopesEnumsAndStrings) {
             "s'' \"\n");
 }
 
+TEST_F(TraceTest, CsvUnitsLine) {
+  std::string error;
+  TraceColumn pos{"AxisX.fSetPosition", TraceColumn::Real};
+  pos.unit = "mm";
+  auto w = TraceWriter::create(path("u.csv"), {pos, {"GVL.n", TraceColumn::Int, 16, true}}, error);
+  ASSERT_TRUE(w) << error;
+  w->sample(0, {real(1.5, "1.5"), integer(2, 16)});
+  ASSERT_TRUE(w->finish(1'000'000, error)) << error;
+  EXPECT_EQ(read(path("u.csv")), "#units,mm,\ntime,AxisX.fSetPosition,GVL.n\n0,1.5,2\n");
+}
+
 TEST_F(TraceTest, VcdIdentifiersStayUniqueBeyond94Columns) {
   std::vector<TraceColumn> cols;
   std::vector<TraceValue> vals;
