@@ -352,6 +352,102 @@ def case_units():
     print("ok")
 
 
+def compare_traces():
+    """Expected and actual: the position differs from 3 s to 5 s, the state from 6 s on,
+    MAIN.bRun is equal, MAIN.old is only expected, MAIN.extra only actual."""
+    header = ["Axis1.fActPosition", "MAIN.bRun", "MAIN.state", "MAIN.old"]
+    exp, act = [], []
+    for i in range(1001):
+        t = i / 100
+        pos = 10.0 * t
+        state = "E_State#Idle" if t < 6 else "E_State#Moving"
+        exp.append([seconds(i, 10), real(pos), "TRUE" if t >= 2 else "FALSE", state, str(i)])
+        apos = pos + (0.5 if 3 <= t < 5 else 1e-12)   # 1e-12: within the default tolerance
+        astate = "E_State#Idle" if t < 6 else "E_State#Done"
+        act.append([seconds(i, 10), real(apos), "TRUE" if t >= 2 else "FALSE", astate, "7"])
+    e = write_csv("expected.csv", header, exp)
+    a = write_csv("actual.csv", ["Axis1.fActPosition", "MAIN.bRun", "MAIN.state", "MAIN.extra"], act)
+    return e, a
+
+
+def x_of_time(root):
+    xt = [(float(t.get("x")), float(t.text)) for t in root.iter(NS + "text") if t.get("class") == "xtick"]
+    (p0, v0), (p1, v1) = xt[0], xt[-1]
+    return lambda v: p0 + (v - v0) * (p1 - p0) / (v1 - v0)
+
+
+def case_compare():
+    e, a = compare_traces()
+    svg = os.path.join(TMP, "compare.svg")
+    rc, out = stc("plot", "--compare", e, a, "-o", svg)
+    expect(rc == 0, f"exit {rc}: {out}")
+    root = parse(svg)
+    title = texts(root, "title")[0]
+    expect(title == "expected.csv vs actual.csv: 4 of 5 variables differ", f"title {title}")
+    only = texts(root, "only")
+    expect(only == ["only in expected: MAIN.old; only in actual: MAIN.extra"], f"only {only}")
+    blocks = {g.get("data-var"): g for g in groups(root, "compare")}
+    expect(list(blocks) == ["Axis1.fActPosition", "MAIN.bRun", "MAIN.state", "MAIN.old", "MAIN.extra"], f"blocks {list(blocks)}")
+    # Both series of the position, the expected one dashed.
+    series = [(g.get("data-var"), g.get("data-trace")) for g in groups(blocks["Axis1.fActPosition"], "series")]
+    expect(series == [("Axis1.fActPosition", "expected"), ("Axis1.fActPosition", "actual")], f"series {series}")
+    dashed = [pl.get("stroke-dasharray") for g in groups(blocks["Axis1.fActPosition"], "series") for pl in g.iter(NS + "polyline")]
+    expect(dashed[0] and not dashed[-1], f"dashes {dashed}")
+    lanes = [g.get("data-trace") for g in groups(blocks["MAIN.bRun"], "lane")]
+    expect(lanes == ["expected", "actual"], f"lanes {lanes}")
+    bands = [g.get("data-trace") for g in groups(blocks["MAIN.state"], "band")]
+    expect(bands == ["expected", "actual"], f"bands {bands}")
+    expect(texts(groups(blocks["MAIN.state"], "state-legend")[0], "state-legend-entry") == ["Idle", "Moving", "Done"], "state legend")
+    # Shading: where the values differ, nowhere else.
+    x = x_of_time(root)
+    shades = lambda var: [(float(r.get("x")), float(r.get("x")) + float(r.get("width")))
+                          for r in blocks[var].iter(NS + "rect") if r.get("class") == "diff"]
+    pos = shades("Axis1.fActPosition")
+    expect(len(pos) == 1 and abs(pos[0][0] - x(3)) < 2 and abs(pos[0][1] - x(5)) < 2, f"position shading {pos} vs {x(3)}..{x(5)}")
+    st = shades("MAIN.state")
+    expect(len(st) == 1 and abs(st[0][0] - x(6)) < 2 and st[0][1] >= x(10) - 2, f"state shading {st}")
+    expect(shades("MAIN.bRun") == [], "equal BOOL shaded")
+    expect(blocks["MAIN.bRun"].get("data-differs") == "false", "MAIN.bRun differs?")
+    # A tolerance that takes in the 0.5 offset (relative to |expected| up to 50): the position is equal.
+    rc, out = stc("plot", "--compare", e, a, "-o", svg, "--tolerance", "0.02", "--vars", "Axis1.fActPosition,MAIN.bRun")
+    root = parse(svg)
+    expect(rc == 0 and texts(root, "title")[0].endswith(": no differences"), f"tolerance: {rc} {out} {texts(root, 'title')}")
+    expect(not [r for r in root.iter(NS + "rect") if r.get("class") == "diff"], "shading within the tolerance")
+    # A trace against itself: no differences; default output name.
+    rc, out = stc("plot", "--compare", e, e)
+    expect(rc == 0 and os.path.exists(e[:-4] + ".compare.svg"), f"default output: {rc} {out}")
+    expect(texts(parse(e[:-4] + ".compare.svg"), "title")[0].endswith(": no differences"), "self compare")
+    # One row each, NaN against NaN and against a number, different lengths: no crash.
+    one_e = write_csv("one_e.csv", ["A", "B"], [["0", "NaN", "1"]])
+    one_a = write_csv("one_a.csv", ["A", "B"], [["0", "NaN", "2"]])
+    rc, out = stc("plot", "--compare", one_e, one_a, "-o", svg)
+    expect(rc == 0 and texts(parse(svg), "title")[0].endswith(": 1 of 2 variables differs"), f"one row: {rc} {out}")
+    short = write_csv("short.csv", ["A", "B"], [["0", "1.0", "1"], ["0.5", "NaN", "1"]])
+    rc, out = stc("plot", "--compare", one_e, short, "-o", svg)
+    expect(rc == 0, f"lengths: {rc} {out}")
+    print("ok")
+
+
+def case_compare_errors():
+    e, a = compare_traces()
+    svg = os.path.join(TMP, "x.svg")
+    for args, code, msg in [(["--compare", e], 2, "--compare"),
+                            (["--compare", e, os.path.join(TMP, "nosuch.csv")], 2, "cannot open"),
+                            (["--compare", e, a, "--tolerance", "-1"], 2, "--tolerance: '-1' is not a finite number >= 0"),
+                            (["--compare", e, a, "--tolerance", "nan"], 2, "--tolerance"),
+                            (["--compare", e, a, "--tolerance", "1e999"], 2, "--tolerance"),
+                            (["--compare", e, a, "--tolerance", "abc"], 2, "--tolerance"),
+                            ([e, "--tolerance", "1e-3"], 2, "requires --compare"),
+                            ([e, "--compare", e, a], 2, "one too many"),
+                            (["--compare", e, a, "--xy", "A,B"], 2, "excludes"),
+                            (["--compare", e, a, "--vars", "MAIN.nosuch"], 2, "no column 'MAIN.nosuch'"),
+                            (["--compare", e, a, "--from", "5s", "--to", "1s"], 2, "--from"),
+                            (["--compare", e, write_csv("empty.csv", ["A"], [])], 1, "has no samples")]:
+        rc, out = stc("plot", *args, "-o", svg)
+        expect(rc == code and msg in out, f"{args}: {rc} {out}")
+    print("ok")
+
+
 # --xy: path plots.  A circle of radius 10 around (5, -3), once round in 2 s (1 ms
 # rows): the commanded path, and an "actual" one lagging 0.1 rad with one NaN row.
 CX, CY, R, LAG = 5.0, -3.0, 10.0, 0.1
@@ -716,4 +812,4 @@ def case_gcode_errors():
  "errors": case_errors, "run": case_run, "xy-circle": case_xy_circle, "xy-window": case_xy_window,
  "xy-errors": case_xy_errors, "run-xy": case_run_xy, "gcode-path": case_gcode_path,
  "gcode-trace": case_gcode_trace, "gcode-errors": case_gcode_errors, "ticks": case_ticks, "legend": case_legend,
- "units": case_units}[CASE]()
+ "units": case_units, "compare": case_compare, "compare-errors": case_compare_errors}[CASE]()

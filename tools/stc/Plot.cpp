@@ -93,6 +93,8 @@ struct Column {
   std::vector<std::string> labels;   // State: distinct values, first seen first
   std::string labelPrefix;           // State: `Type#` common to every value (dropped in labels)
   std::string unit;                  // the axis unit from the trace's #units line ("" none)
+  std::string role;                  // --compare: "expected" or "actual" ("" otherwise)
+  bool dashed = false;               // --compare: the expected line
   int color = 0;
 };
 
@@ -195,6 +197,9 @@ Column classify(const std::string& name, const std::vector<std::string>& raw) {
   }
   return c;
 }
+
+// The name shown for a column: `X (expected)` when compared.
+std::string shownName(const Column& c) { return c.role.empty() ? c.name : c.name + " (" + c.role + ")"; }
 
 // Column i of the trace, classified, with its unit.
 Column columnOf(const TraceTable& trace, size_t i) {
@@ -404,6 +409,7 @@ struct Panel {
   int kind;
   std::vector<size_t> series;   // indices into columns
   std::string unit;             // of every series ("" none)
+  std::string title;            // empty: from the kind
 };
 
 void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Column>& cols, const std::vector<double>& t, double top,
@@ -422,7 +428,7 @@ void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Colu
   const TickAxis axis = niceAxis(lo, hi, tr);
   lo = axis.lo, hi = axis.hi;
   auto y = [&](double v) { return top + height - (v - lo) / (hi - lo) * height; };
-  std::string title = p.kind != 7 ? k.label : p.series.size() == 1 ? cols[p.series[0]].name : "values";
+  std::string title = !p.title.empty() ? p.title : p.kind != 7 ? k.label : p.series.size() == 1 ? cols[p.series[0]].name : "values";
   if (!p.unit.empty()) title += fmt::format(" [{}]", p.unit);
   s.add(R"(<g class="panel" data-kind="{}">)", p.kind == 7 ? "other" : k.key);
   s.add(R"(<text class="panel-title" x="{}" y="{}" font-weight="bold">{}</text>)", num(L.left), num(top - 6), xmlEscape(title));
@@ -479,11 +485,14 @@ void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Colu
       }
     }
     endLine();
-    s.add(R"s(<g class="series" data-var="{}" clip-path="url(#clip{})">)s", xmlEscape(c.name), index);
+    const char* dash = c.dashed ? "5 3" : nullptr;
+    std::string role = c.role.empty() ? "" : fmt::format(R"( data-trace="{}")", c.role);
+    s.add(R"s(<g class="series" data-var="{}"{} clip-path="url(#clip{})">)s", xmlEscape(c.name), role, index);
     for (const std::string& l : lines)
-      s.add(R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round" points="{}"/>)", color, l);
+      s.add(R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round"{} points="{}"/>)", color,
+            dash ? fmt::format(R"( stroke-dasharray="{}")", dash) : "", l);
     s.add("</g>");
-    legendEntry(s, L.left + L.plotW + 12, ly, color, c.name, L.legend - 12);
+    legendEntry(s, L.left + L.plotW + 12, ly, color, shownName(c), L.legend - 12, dash);
     ly += 16;
   }
   s.add("</g>");
@@ -496,7 +505,7 @@ void drawBool(Svg& s, const Layout& L, const Column& c, const std::vector<double
     return std::isnan(v) ? -1 : v != 0 ? 1 : 0;
   });
   double hiY = top + 3, loY = top + height - 3;
-  s.add(R"(<g class="lane" data-var="{}">)", xmlEscape(c.name));
+  s.add(R"(<g class="lane" data-var="{}"{}>)", xmlEscape(c.name), c.role.empty() ? "" : fmt::format(R"( data-trace="{}")", c.role));
   s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#dddddd"/>)", num(L.left), num(top), num(L.plotW), num(height));
   std::string wave, fill, mixed;
   double px = L.plotW / L.pixels;
@@ -521,13 +530,13 @@ void drawBool(Svg& s, const Layout& L, const Column& c, const std::vector<double
   if (!mixed.empty()) s.add(R"(<path d="{}" fill="{}" fill-opacity="0.6"/>)", mixed, color);
   if (!wave.empty()) s.add(R"(<path class="wave" d="{}" fill="none" stroke="{}" stroke-width="1.5"/>)", wave, color);
   s.add(R"(<text class="lane-name" x="{}" y="{}" fill="{}">{}</text>)", num(L.left + L.plotW + 12), num(top + height / 2 + 4), color,
-        xmlEscape(fitText(c.name, L.legend - 14)));
+        xmlEscape(fitText(shownName(c), L.legend - 14)));
   s.add("</g>");
 }
 
 void drawState(Svg& s, const Layout& L, const Column& c, const std::vector<double>& time, double top, double height) {
   std::vector<int> cols = columnStates(L, time, [&](size_t r) { return c.state[r]; });
-  s.add(R"(<g class="band" data-var="{}">)", xmlEscape(c.name));
+  s.add(R"(<g class="band" data-var="{}"{}>)", xmlEscape(c.name), c.role.empty() ? "" : fmt::format(R"( data-trace="{}")", c.role));
   s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#fafafa" stroke="#dddddd"/>)", num(L.left), num(top), num(L.plotW), num(height));
   double px = L.plotW / L.pixels;
   for (int i = 0; i < L.pixels;) {
@@ -549,7 +558,7 @@ void drawState(Svg& s, const Layout& L, const Column& c, const std::vector<doubl
     i = j;
   }
   s.add(R"(<text class="lane-name" x="{}" y="{}">{}</text>)", num(L.left + L.plotW + 12), num(top + height / 2 + 4),
-        xmlEscape(fitText(c.name, L.legend - 14)));
+        xmlEscape(fitText(shownName(c), L.legend - 14)));
   s.add("</g>");
 }
 
@@ -598,7 +607,7 @@ StateLegend stateLegend(const Column& c, double width) {
   const size_t kMaxRows = 3;
   StateLegend g;
   // The enum's type first (`E_State:`), then the values, first seen first
-  // (an empty one is no value).
+  // (an empty one is no value: --compare past the end of a trace).
   double x = c.labelPrefix.empty() ? 0 : textWidth(c.labelPrefix, 6.2) + 8;
   g.rows.emplace_back();
   for (size_t v = 0; v < c.labels.size(); ++v) {
@@ -1070,6 +1079,229 @@ std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options, c
   return std::move(s.out);
 }
 
+// ------------------------------------------------------------------ --compare
+
+// Column `col` of `t` at the times of `grid`: a sample holds until the next
+// one; before the first and after the last sample there is no value ("").
+std::vector<std::string> resample(const TraceTable& t, size_t col, const std::vector<double>& grid) {
+  std::vector<std::string> out(grid.size());
+  if (col == std::string::npos || t.time.empty()) return out;
+  size_t r = 0;
+  for (size_t g = 0; g < grid.size(); ++g) {
+    while (r + 1 < t.time.size() && t.time[r + 1] <= grid[g]) ++r;
+    if (grid[g] >= t.time.front() && grid[g] <= t.time.back()) out[g] = t.columns[col][r];
+  }
+  return out;
+}
+
+// Whether an expected and an actual value differ: different text, unless
+// both are numbers within the tolerance (|a - e| <= tol * max(1, |e|), as stc test).
+bool valuesDiffer(const std::string& e, const std::string& a, double tol) {
+  if (e == a) return false;
+  double x, y;
+  bool tx, ty;
+  if (e.empty() || a.empty() || !literalNumber(e, x, tx) || !literalNumber(a, y, ty)) return true;
+  if (std::isnan(x) || std::isnan(y)) return std::isnan(x) != std::isnan(y);
+  if (std::isinf(x) || std::isinf(y)) return x != y;
+  return !(std::fabs(y - x) <= tol * std::max(1.0, std::fabs(x)));
+}
+
+// One variable of a comparison: its expected and actual columns (either
+// missing when only one trace has it) and the rows where they differ.
+struct Compared {
+  std::string name;
+  std::optional<Column> expected, actual;
+  std::vector<char> differs;   // per row of the merged time grid
+  bool anyDiffers = false;     // in the window
+};
+
+// Per pixel column: whether a differing row covers it (a row lasts until the next one).
+std::vector<char> diffColumns(const Layout& L, const std::vector<double>& time, const std::vector<char>& differs) {
+  std::vector<char> out(static_cast<size_t>(L.pixels), 0);
+  for (size_t r = L.r0 > 0 ? L.r0 - 1 : 0; r < L.r1; ++r) {
+    if (!differs[r]) continue;
+    int c0 = L.column(time[r]);
+    int c1 = r + 1 < time.size() ? std::max(c0, L.column(time[r + 1]) - 1) : c0;
+    if (time[r] > L.t1) continue;
+    for (int c = c0; c <= c1; ++c) out[static_cast<size_t>(c)] = 1;
+  }
+  return out;
+}
+
+// Red shading over [top, top + height] where the pixel columns differ.
+void drawDiffShading(Svg& s, const Layout& L, const std::vector<char>& cols, double top, double height, const std::string& var) {
+  double px = L.plotW / L.pixels;
+  for (int i = 0; i < L.pixels;) {
+    if (!cols[static_cast<size_t>(i)]) {
+      ++i;
+      continue;
+    }
+    int j = i;
+    while (j < L.pixels && cols[static_cast<size_t>(j)]) ++j;
+    const double t0 = L.t0 + (L.t1 - L.t0) * i / L.pixels, t1 = L.t0 + (L.t1 - L.t0) * j / L.pixels;
+    const double tol = std::max(5e-10, (L.t1 - L.t0) * 1e-6);
+    s.add(R"(<rect class="diff" data-var="{}" data-from="{}" data-to="{}" x="{}" y="{}" width="{}" height="{}" fill="#d62728" fill-opacity="0.15" stroke="#d62728" stroke-opacity="0.6"/>)",
+          xmlEscape(var), formatSeconds(t0, tol), formatSeconds(t1, tol), num(L.left + i * px), num(top), num((j - i) * px), num(height));
+    i = j;
+  }
+}
+
+std::string renderCompare(const TraceTable& exp, const TraceTable& act, const PlotOptions& options, double tol,
+                          const std::string& expName, const std::string& actName) {
+  // The merged time grid: every sample time of either trace.
+  std::vector<double> grid;
+  std::merge(exp.time.begin(), exp.time.end(), act.time.begin(), act.time.end(), std::back_inserter(grid));
+  grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
+  TraceTable merged;
+  merged.time = grid;
+  Window w = timeWindow(merged, options);
+
+  // The variables: the expected trace's, then those only in the actual one (--vars: those, in order).
+  std::vector<std::string> names;
+  auto has = [&](const std::string& n) {
+    return std::any_of(names.begin(), names.end(), [&](const std::string& x) { return lower(x) == lower(n); });
+  };
+  if (!options.vars.empty()) {
+    for (const std::string& v : options.vars) {
+      size_t i = findColumn(exp, v), j = findColumn(act, v);
+      std::string n = i != std::string::npos ? exp.names[i] : j != std::string::npos ? act.names[j] : v;
+      if (!has(n)) names.push_back(n);
+    }
+  } else {
+    for (const std::string& n : exp.names)
+      if (!has(n)) names.push_back(n);
+    for (const std::string& n : act.names)
+      if (!has(n)) names.push_back(n);
+  }
+  std::vector<Compared> vars;
+  std::vector<std::string> onlyExpected, onlyActual;
+  for (const std::string& n : names) {
+    Compared v;
+    v.name = n;
+    size_t ei = findColumn(exp, n), ai = findColumn(act, n);
+    std::vector<std::string> e = resample(exp, ei, grid), a = resample(act, ai, grid);
+    // One classification for both, so that they share a kind and state colours.
+    std::vector<std::string> both = e;
+    both.insert(both.end(), a.begin(), a.end());
+    Column c = classify(n, both);
+    c.unit = ei != std::string::npos && ei < exp.units.size() && !exp.units[ei].empty() ? exp.units[ei]
+             : ai != std::string::npos && ai < act.units.size()                          ? act.units[ai]
+                                                                                          : "";
+    auto half = [&](bool second, const char* role) {
+      Column h = c;
+      h.role = role;
+      const size_t n0 = second ? grid.size() : 0;
+      if (!h.num.empty()) h.num.assign(c.num.begin() + static_cast<long>(n0), c.num.begin() + static_cast<long>(n0 + grid.size()));
+      if (!h.state.empty())
+        h.state.assign(c.state.begin() + static_cast<long>(n0), c.state.begin() + static_cast<long>(n0 + grid.size()));
+      return h;
+    };
+    if (ei != std::string::npos) v.expected = half(false, "expected");
+    if (ai != std::string::npos) v.actual = half(true, "actual");
+    if (v.expected) v.expected->dashed = true, v.expected->color = 0;
+    if (v.actual) v.actual->color = 1;
+    v.differs.resize(grid.size());
+    for (size_t r = 0; r < grid.size(); ++r) {
+      v.differs[r] = (ei == std::string::npos || ai == std::string::npos) ? 0 : valuesDiffer(e[r], a[r], tol);
+      if (v.differs[r] && r >= w.r0 && r < w.r1) v.anyDiffers = true;
+    }
+    if (ei == std::string::npos) onlyActual.push_back(n);
+    if (ai == std::string::npos) onlyExpected.push_back(n);
+    vars.push_back(std::move(v));
+  }
+  // A state column that was never sampled in either trace has no labels: no value anywhere.
+  for (Compared& v : vars)
+    for (std::optional<Column>* c : {&v.expected, &v.actual})
+      if (*c && (*c)->kind == Kind::State)
+        for (int& st : (*c)->state)
+          if (st >= 0 && (*c)->labels[static_cast<size_t>(st)].empty()) st = -1;
+
+  Layout L;
+  double maxName = 0;
+  for (const Compared& v : vars) maxName = std::max(maxName, textWidth(v.name + " (expected)"));
+  L.legend = std::clamp(maxName + 44, 150.0, 300.0);
+  L.plotW = L.width - L.left - L.legend - 8;
+  L.pixels = static_cast<int>(L.plotW);
+  L.t0 = w.t0, L.t1 = w.t1, L.r0 = w.r0, L.r1 = w.r1;
+
+  // Blocks, top to bottom: a panel per number, two lanes per BOOL, two bands per state.
+  const double panelH = 120, panelGap = 34, laneH = 22, laneGap = 4, bandH = 24;
+  const bool notes = !onlyExpected.empty() || !onlyActual.empty();
+  const double top0 = notes ? 88 : 72;
+  struct Block {
+    double top = 0, height = 0;   // of the data area (shaded where the values differ)
+    double legendTop = 0;         // states: the legend under the bands
+    StateLegend legend;
+  };
+  std::vector<Block> blocks;
+  double y = top0;
+  for (const Compared& v : vars) {
+    const Column& c = v.expected ? *v.expected : *v.actual;
+    const double n = (v.expected && v.actual) ? 2 : 1;
+    Block b;
+    if (c.kind == Kind::Number) {
+      y += 14;   // the panel title
+      b.top = y, b.height = panelH;
+      y += panelH + panelGap - 14;
+    } else if (c.kind == Kind::Bool) {
+      b.top = y, b.height = n * (laneH + laneGap) - laneGap;
+      y += b.height + laneGap + 12;
+    } else {
+      b.top = y, b.height = n * (bandH + laneGap) - laneGap;
+      b.legend = stateLegend(c, L.plotW);
+      b.legendTop = y + b.height + 2;
+      y += b.height + 2 + kLegendRowH * static_cast<double>(b.legend.rows.size()) + laneGap + 12;
+    }
+    blocks.push_back(std::move(b));
+  }
+  const double bottom = vars.empty() ? top0 + 40 : y - 12;
+  const double height = bottom + 48;
+
+  size_t differing = 0;
+  for (const Compared& v : vars) differing += (v.anyDiffers || !v.expected || !v.actual) ? 1 : 0;
+  std::string title = options.title.empty() ? expName + " vs " + actName : options.title;
+  title += differing ? fmt::format(": {} of {} variable{} differ{}", differing, vars.size(), vars.size() == 1 ? "" : "s", differing == 1 ? "s" : "")
+                     : vars.empty() ? ": no variables" : ": no differences";
+  Svg s;
+  openSvg(s, L.width, height, L.left, title,
+          fmt::format("{}; tolerance {}; expected dashed, actual solid, differences shaded", windowText(w), tol));
+  if (notes) {
+    std::string text;
+    auto list = [](const std::vector<std::string>& v) {
+      std::string out;
+      for (const std::string& n : v) out += (out.empty() ? "" : ", ") + n;
+      return out;
+    };
+    if (!onlyExpected.empty()) text += "only in expected: " + list(onlyExpected);
+    if (!onlyActual.empty()) text += (text.empty() ? "" : "; ") + std::string("only in actual: ") + list(onlyActual);
+    s.add(R"(<text class="only" x="{}" y="56" fill="#d62728">{}</text>)", num(L.left), xmlEscape(fitText(text, L.width - L.left - 8)));
+  }
+  if (vars.empty()) s.add(R"(<text x="{}" y="{}">no variables</text>)", num(L.left), num(top0 + 20));
+  const std::vector<double> timeTicks = drawTimeAxis(s, L, top0, bottom, !options.to);
+  for (size_t i = 0; i < vars.size(); ++i) {
+    const Compared& v = vars[i];
+    const Block& b = blocks[i];
+    std::vector<Column> cols;
+    if (v.expected) cols.push_back(*v.expected);
+    if (v.actual) cols.push_back(*v.actual);
+    s.add(R"(<g class="compare" data-var="{}" data-differs="{}">)", xmlEscape(v.name), v.anyDiffers ? "true" : "false");
+    if (cols[0].kind == Kind::Number) {
+      Panel p{kindOf(cols[0]), {}, unitOf(kindOf(cols[0]), cols[0]), v.name};
+      for (size_t k = 0; k < cols.size(); ++k) p.series.push_back(k);
+      drawNumeric(s, L, p, cols, grid, b.top, b.height, static_cast<int>(i), timeTicks);
+    } else if (cols[0].kind == Kind::Bool) {
+      for (size_t k = 0; k < cols.size(); ++k) drawBool(s, L, cols[k], grid, b.top + static_cast<double>(k) * (laneH + laneGap), laneH);
+    } else {
+      for (size_t k = 0; k < cols.size(); ++k) drawState(s, L, cols[k], grid, b.top + static_cast<double>(k) * (bandH + laneGap), bandH);
+      drawStateLegend(s, L.left, b.legendTop, cols[0], b.legend);
+    }
+    if (v.anyDiffers) drawDiffShading(s, L, diffColumns(L, grid, v.differs), b.top, b.height, v.name);
+    s.add("</g>");
+  }
+  s.add("</svg>");
+  return std::move(s.out);
+}
+
 }  // namespace
 
 bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, bool& missing) {
@@ -1180,7 +1412,7 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
     int k = kindOf(c);
     std::string unit = unitOf(k, c);
     auto it = std::find_if(panels.begin(), panels.end(), [&](const Panel& p) { return p.kind == k && p.unit == unit; });
-    if (it == panels.end() || (k == 7 && others <= 4)) panels.push_back({k, {i}, unit});
+    if (it == panels.end() || (k == 7 && others <= 4)) panels.push_back({k, {i}, unit, {}});
     else it->series.push_back(i);
   }
   for (size_t i : bools) cols[i].color = colorIndex++;
@@ -1317,6 +1549,46 @@ int plotFiles(const std::string& csvPath, const std::string& svgPath, const Plot
   return writeSvg(svgPath, svg, error) ? 0 : 1;
 }
 
+std::string renderCompareSvg(const TraceTable& expected, const TraceTable& actual, const PlotOptions& options, double tolerance,
+                             const std::string& expectedName, const std::string& actualName) {
+  return renderCompare(expected, actual, options, tolerance, expectedName, actualName);
+}
+
+int compareTraceFiles(const std::string& expectedCsv, const std::string& actualCsv, const std::string& svgPath, const PlotOptions& options,
+                      double tolerance, std::string& error) {
+  if (!(tolerance >= 0) || !std::isfinite(tolerance)) {
+    error = fmt::format("--tolerance: {} is not a finite number >= 0", tolerance);
+    return 2;
+  }
+  TraceTable e, a;
+  bool missing = false;
+  if (!readTraceCsv(expectedCsv, e, error, missing) || !readTraceCsv(actualCsv, a, error, missing)) return missing ? 2 : 1;
+  for (const std::string& v : options.vars)
+    if (findColumn(e, v) == std::string::npos && findColumn(a, v) == std::string::npos) {
+      std::vector<std::string> all = e.names;
+      all.insert(all.end(), a.names.begin(), a.names.end());
+      std::string hint = config::closest(v, all);
+      error = fmt::format("--vars: no column '{}' in '{}' or '{}'{}", v, expectedCsv, actualCsv,
+                          hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint));
+      return 2;
+    }
+  if (options.from && options.to && *options.from >= *options.to) {
+    error = "--from must be before --to";
+    return 2;
+  }
+  for (const auto& [t, path] : {std::pair{&e, &expectedCsv}, std::pair{&a, &actualCsv}})
+    if (t->time.empty()) {
+      error = fmt::format("'{}' has no samples", *path);
+      return 1;
+    }
+  auto base = [](const std::string& p) {
+    size_t slash = p.find_last_of('/');
+    return slash == std::string::npos ? p : p.substr(slash + 1);
+  };
+  std::string svg = renderCompare(e, a, options, tolerance, base(expectedCsv), base(actualCsv));
+  return writeSvg(svgPath, svg, error) ? 0 : 1;
+}
+
 void PlotCommand::add(CLI::App& app) {
   cmd = app.add_subcommand("plot", "Draw a trace CSV (stc run --trace-out x.csv) or a G-code program's tool path as an SVG");
   cmd->add_option("trace", trace, "Trace CSV file (optional with --gcode)");
@@ -1344,6 +1616,17 @@ void PlotCommand::add(CLI::App& app) {
   cmd->add_option("--rapid", rapid, "Trace column that is TRUE while a G0 move runs: those parts of the --xy paths are dashed")
       ->type_name("COL")
       ->needs(xyOpt);
+  CLI::Option* compareOpt =
+      cmd->add_option("--compare", compare,
+                      "Draw an expected and an actual trace over each other, the time spans where they differ shaded")
+          ->type_name("EXPECTED ACTUAL")
+          ->expected(2)
+          ->allow_extra_args(false)
+          ->excludes(xyOpt)
+          ->excludes(gcodeOpt);
+  cmd->add_option("--tolerance", tolerance, "With --compare: numbers within TOL x max(1, |expected|) are equal (default 1e-9)")
+      ->type_name("TOL")
+      ->needs(compareOpt);
   cmd->footer(
       "Examples:\n"
       "  stc plot trace.csv --vars Axis1.fSetPosition,Axis1.fSetVelocity\n"
@@ -1351,6 +1634,7 @@ void PlotCommand::add(CLI::App& app) {
       "  stc plot --gcode part.cnc                   the program's X/Y tool path alone (part.svg)\n"
       "  stc plot --gcode part.cnc --gcode-axes X,Z  the X/Z plane\n"
       "  stc plot trace.csv --xy X.fActPosition,Y.fActPosition --gcode part.cnc --rapid MAIN.bRapid\n"
+      "  stc plot --compare expected/run.csv actual.csv -o diff.svg --tolerance 1e-6\n"
       "G-code: feed moves solid, G0 dashed; decode errors are printed as by stc check (exit 1). See docs/cnc.md.");
 }
 
@@ -1380,11 +1664,42 @@ bool PlotCommand::parseWindow(PlotOptions& o, std::string& error) const {
   return true;
 }
 
+int PlotCommand::runCompare() const {
+  auto usage = [](const std::string& msg) {
+    std::fprintf(stderr, "stc: error: %s\n", msg.c_str());
+    return 2;
+  };
+  if (!trace.empty())
+    return usage(fmt::format("--compare takes the two traces (EXPECTED ACTUAL); '{}' is one too many", trace));
+  if (compare.size() != 2) return usage("--compare needs two traces: EXPECTED ACTUAL");
+  if (!rapid.empty()) return usage("--rapid draws --xy paths; it does not go with --compare");
+  double tol = 1e-9;
+  if (!tolerance.empty() && (!parseDouble(tolerance, tol) || !std::isfinite(tol) || tol < 0))
+    return usage(fmt::format("--tolerance: '{}' is not a finite number >= 0 (e.g. 1e-6)", tolerance));
+  PlotOptions o;
+  o.vars = vars;
+  o.title = title;
+  std::string err;
+  if (!parseWindow(o, err)) return usage(err);
+  std::string out = output;
+  if (out.empty()) {
+    // actual.csv -> actual.compare.svg
+    out = compare[1];
+    size_t dot = out.find_last_of('.'), slash = out.find_last_of('/');
+    if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) out.erase(dot);
+    out += ".compare.svg";
+  }
+  int rc = compareTraceFiles(compare[0], compare[1], out, o, tol, err);
+  if (rc) std::fprintf(stderr, "stc: error: %s\n", err.c_str());
+  return rc;
+}
+
 int PlotCommand::run() const {
   auto usage = [](const std::string& msg) {
     std::fprintf(stderr, "stc: error: %s\n", msg.c_str());
     return 2;
   };
+  if (!compare.empty()) return runCompare();
   if (trace.empty() && gcode.empty()) return usage("plot: give a trace CSV, --gcode FILE, or both (stc plot --help)");
   if (trace.empty())
     for (auto [opt, given] : {std::pair{"--xy", !xy.empty()}, std::pair{"--vars", !vars.empty()}, std::pair{"--from", !from.empty()},
