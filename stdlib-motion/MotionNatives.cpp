@@ -33,7 +33,7 @@ const void* MotionLibrary::sessionKey() const { return &kMotionSessionKey; }
 std::unique_ptr<vm::NativeSession> MotionLibrary::newSession() const { return std::make_unique<MotionSession>(*this, cfg_); }
 
 bool MotionLibrary::readProject(const std::string& dir, const std::vector<std::string>& libraries, std::string& error) {
-  return checkProjectToml(dir, error) && loadProjectDataDir(dir, cfg_.filesDir, error) && loadProjectAxes(dir, cfg_.axes, error, &cfg_.axisWhere) &&
+  return checkProjectToml(dir, error) && loadProjectDataDir(dir, cfg_.filesDir, error) && loadProjectAxes(dir, cfg_.axes, error, &cfg_.axisWhere, &cfg_.axisUnits) &&
          loadProjectIo(dir, cfg_.io, error) && loadProjectCams(dir, cfg_.cams, error) && loadProjectCncPrograms(dir, cfg_.cncPrograms, error) &&
          loadProjectGroups(dir, cfg_.groups, error) &&
          loadProjectVendorProfile(dir, libraries, cfg_.profile, error);
@@ -200,6 +200,13 @@ bool loadProjectGroups(const std::string& dir, std::vector<GroupConfig>& out, st
   return true;
 }
 
+std::vector<std::pair<std::string, std::string>> MotionSession::units() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (size_t i = 0; i < cfg_.axes.size() && i < cfg_.axisUnits.size(); ++i)
+    if (!cfg_.axisUnits[i].empty()) out.emplace_back(cfg_.axes[i].name, cfg_.axisUnits[i]);
+  return out;
+}
+
 void MotionSession::cycle(const vm::HookCtx& c) {
   kernel.cycle(c.task, c.now, c.interval, c.cycle);
   if (mirrorsRead)
@@ -289,7 +296,8 @@ bool loadProjectVendorProfile(const std::string& dir, const std::vector<std::str
   return true;
 }
 
-bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error, std::vector<std::string>* whereOut) {
+bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error, std::vector<std::string>* whereOut,
+                     std::vector<std::string>* unitsOut) {
   std::string file;
   toml::table tbl;
   const toml::array* axes = projectTables(dir, "axis", tbl, file);
@@ -321,9 +329,9 @@ bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::
       error = where(file, *n) + "axis key '" + key + "' must be a string";
       return false;
     };
-    std::string kind = "virtual", drive = "ideal", ramp = "trapez";
+    std::string kind = "virtual", drive = "ideal", ramp = "trapez", unit;
     double swPos = NAN, swNeg = NAN, limPos = NAN, limNeg = NAN, channel = -1;
-    if (!str("name", c.name) || !str("task", c.task) || !str("type", kind) || !str("drive", drive) || !str("ramp", ramp) ||
+    if (!str("name", c.name) || !str("task", c.task) || !str("type", kind) || !str("drive", drive) || !str("ramp", ramp) || !str("unit", unit) ||
         !num("period", c.period) || !num("increments_per_unit", c.drive.incrementsPerUnit) || !num("max_velocity", c.maxVelocity) ||
         !num("max_acceleration", c.maxAcceleration) || !num("max_deceleration", c.maxDeceleration) || !num("max_jerk", c.maxJerk) ||
         !num("error_deceleration", c.errorDeceleration) || !num("sw_limit_positive", swPos) || !num("sw_limit_negative", swNeg) ||
@@ -415,6 +423,7 @@ bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::
     }
     out.push_back(std::move(c));
     if (whereOut) whereOut->push_back(where(file, t->get("kv") ? *t->get("kv") : node));
+    if (unitsOut) unitsOut->push_back(unit);
   }
   return true;
 }

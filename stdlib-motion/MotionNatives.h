@@ -63,6 +63,7 @@ struct GroupFace {
 // What a run's motion needs from project.toml and the command line.
 struct MotionConfig {
   std::vector<AxisConfig> axes;    // [[axis]]
+  std::vector<std::string> axisUnits;   // [[axis]] unit, by index of `axes` ("" when not given)
   std::vector<GroupConfig> groups; // [[group]]
   std::vector<IoDevice> io;        // [[io]]
   std::vector<CamConfig> cams;     // [[cam]]
@@ -146,6 +147,8 @@ public:
   MotionSession(const MotionLibrary& lib, const MotionConfig& cfg);
   bool start(const vm::StartCtx& sc, std::string& error) override;
   void cycle(const vm::HookCtx& c) override;
+  // Each configured axis with a `unit`: (axis name, unit).
+  std::vector<std::pair<std::string, std::string>> units() const override;
 
   // The session of the controller whose code is running (natives only).
   static MotionSession& current() {
@@ -259,8 +262,10 @@ inline Kernel& kernel() { return MotionSession::current().kernel; }
 
 // The axes of the project ([[axis]] tables of `dir`/project.toml).  False with
 // `error` (file:line:col: message) on a bad table; no file or no table is fine.
-// `where` (optional) gets "file:line:col: " of each axis's kv (else of its table), in order.
-bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error, std::vector<std::string>* where = nullptr);
+// `where` (optional) gets "file:line:col: " of each axis's kv (else of its table), in order;
+// `units` (optional) each axis's `unit` ("" when not given), in order.
+bool loadProjectAxes(const std::string& dir, std::vector<AxisConfig>& out, std::string& error, std::vector<std::string>* where = nullptr,
+                     std::vector<std::string>* units = nullptr);
 
 // The vendor profile of the run (docs/motion.md, "Vendor profiles").  From project.toml:
 // [project] motion_profile = "amc1600c" | "leadshine_pmc600"; without it, leadshine_pmc600

@@ -1,5 +1,6 @@
 #include "vm/Controller.h"
 
+#include <algorithm>
 #include <csignal>
 #include <cstring>
 #include <functional>
@@ -135,6 +136,21 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   std::unique_ptr<TraceWriter> trace;
   if (!opts.traces.empty()) {
     std::vector<TraceColumn> cols;
+    // The units the libraries configure (axes): a traced variable at or under
+    // one of their paths takes the unit of the longest.
+    std::vector<std::pair<std::string, std::string>> units;
+    for (const auto& s : sessions_)
+      for (auto& u : s->units()) units.emplace_back(asciiLower(u.first), std::move(u.second));
+    auto unitOf = [&units](const std::string& var) {
+      const std::string v = asciiLower(var);
+      size_t best = 0;
+      std::string unit;
+      for (const auto& [path, u] : units) {
+        const bool under = v.size() == path.size() || (v.size() > path.size() && (v[path.size()] == '.' || v[path.size()] == '['));
+        if (path.size() > best && under && v.compare(0, path.size(), path) == 0) best = path.size(), unit = u;
+      }
+      return unit;
+    };
     for (const std::string& w : opts.traces) {
       ValueRef ref;
       std::string e;
@@ -146,10 +162,12 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
       const sema::Type* u = t->underlying();
       TraceColumn c;
       c.name = w;
-      if (u->isBool()) c.kind = TraceColumn::Bool, c.bits = 1;
+      if (t->kind == sema::TypeKind::Enum) c.kind = TraceColumn::Enum;   // by its value names, not its base integer
+      else if (u->isBool()) c.kind = TraceColumn::Bool, c.bits = 1;
       else if (u->isReal()) c.kind = TraceColumn::Real, c.bits = u->bits();
       else if (u->isElementary() && !u->isString()) c.kind = TraceColumn::Int, c.bits = u->bits(), c.isSigned = u->isSignedInt() || u->isDuration();
       else c.kind = TraceColumn::Text;
+      c.unit = unitOf(w);
       cols.push_back(c);
       traced.push_back(ref);
     }
@@ -349,8 +367,11 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   bool exitFaulted = !callOutsideTasks(fbExit_, false, exitFault);
   if (!opts.retainFile.empty()) retainSave(opts.retainFile);
   if (trace) {
+    // The run ends with its last tick (at the limit, or earlier when stopped).
     std::string e;
-    if (!trace->finish(e)) err << "stc: error: " << e << "\n";
+    Time end = sched_->now() + sched_->baseTick();
+    if (limit.until) end = std::min(end, *limit.until);
+    if (!trace->finish(end, e)) err << "stc: error: " << e << "\n";
   }
   for (size_t k = 0; k < watches.size(); ++k)
     out << opts.watches[k] << " = " << valueText(watches[k]) << "\n";

@@ -15,6 +15,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "vm/Scheduler.h"
@@ -73,6 +74,11 @@ public:
   virtual bool start(const StartCtx&, std::string& /*error*/) { return true; }
   // After the programs of every task slot, also while the task is suspended in a wait.
   virtual void cycle(const HookCtx&) {}
+  // The units of measure of the variables the library configures, as (path,
+  // unit) pairs (the motion library: each [[axis]] with a `unit`).  A traced
+  // variable at or under a path (names case-insensitive) takes its unit;
+  // traces record it (vm/Trace.h).  Asked before start().
+  virtual std::vector<std::pair<std::string, std::string>> units() const { return {}; }
 };
 
 // A native library as the controller sees it: the C++ bodies of its

@@ -1,11 +1,15 @@
 #include "vm/Trace.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <ctime>
+#include <string_view>
 
 
 namespace stc::vm {
@@ -70,6 +74,15 @@ public:
   CsvWriter(std::unique_ptr<Output> out, std::vector<TraceColumn> columns, const CsvTraceOptions& opts)
       : out_(std::move(out)), columns_(std::move(columns)), opts_(opts) {
     std::string& b = out_->buffer();
+    // The axes' units, when a column has one: `#units,,mm,...` lines up with the header.
+    if (std::any_of(columns_.begin(), columns_.end(), [](const TraceColumn& c) { return !c.unit.empty(); })) {
+      b += "#units";
+      for (const TraceColumn& c : columns_) {
+        b += ',';
+        appendCsvField(b, c.unit);
+      }
+      b += '\n';
+    }
     b += "time";
     for (const TraceColumn& c : columns_) {
       b += ',';
@@ -101,7 +114,7 @@ public:
     }
     write(t, row_);
   }
-  bool finish(std::string& error) override {
+  bool finish(Time, std::string& error) override {
     if (pending_) write(pendingTime_, last_);
     pending_ = false;
     return out_->close(error);
@@ -123,37 +136,88 @@ private:
   Time pendingTime_ = 0;
 };
 
+// The date of a VCD: SOURCE_DATE_EPOCH when set (reproducible files), else now.
+std::string vcdDate() {
+  std::time_t t = std::time(nullptr);
+  if (const char* e = std::getenv("SOURCE_DATE_EPOCH")) {
+    long long v = 0;
+    auto r = std::from_chars(e, e + std::strlen(e), v);
+    if (r.ec == std::errc() && *r.ptr == '\0' && v >= 0 && v <= 253402300799)   // up to 9999-12-31
+      t = static_cast<std::time_t>(v);
+  }
+  std::tm tm{};
+  char buf[64];
+  if (!gmtime_r(&t, &tm) || !std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S UTC", &tm)) return "unknown";
+  return buf;
+}
+
+// Whitespace would end a reference or a value in the VCD grammar.
+std::string vcdToken(std::string_view s) {
+  std::string out;
+  for (char ch : s) out += (ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r') ? '_' : ch;
+  return out;
+}
+
+// A variable path split at the dots outside [...]: GVL.a[1].b -> GVL, a[1], b.
+std::vector<std::string> pathParts(const std::string& name) {
+  std::vector<std::string> parts(1);
+  int depth = 0;
+  for (char c : name) {
+    if (c == '[') ++depth;
+    if (c == ']' && depth > 0) --depth;
+    if (c == '.' && depth == 0) parts.emplace_back();
+    else parts.back() += c;
+  }
+  return parts;
+}
+
+// One sample per base tick as value changes: BOOL 1-bit wires, integers and
+// times n-bit wires, REALs real, enums (their value names) and strings (their
+// literals, whitespace as $hh) GTKWave's string variables.  Each dotted part
+// of a name but the last is a module scope (a program, GVL, axis, instance).
 class VcdWriter final : public TraceWriter {
 public:
   VcdWriter(std::unique_ptr<Output> out, std::vector<TraceColumn> columns)
       : out_(std::move(out)), columns_(std::move(columns)) {
     std::string& b = out_->buffer();
-    b += "$timescale 1ns $end\n$scope module top $end\n";
+    b += "$date " + vcdDate() + " $end\n";
+    b += "$version stc " STC_VERSION " $end\n";
+    b += "$timescale 1ns $end\n";
     for (size_t i = 0; i < columns_.size(); ++i) {
       TraceColumn& c = columns_[i];
       if (c.kind == TraceColumn::Bool) c.bits = 1;
       if (c.kind == TraceColumn::Int && (c.bits == 0 || c.bits > 64)) c.bits = 64;
       ids_.push_back(identifier(i));
-      b += "$var ";
-      b += c.kind == TraceColumn::Real ? "real 64 " : "wire " + std::to_string(c.bits) + ' ';
-      b += ids_.back();
-      b += ' ';
-      // Whitespace would end the reference in the VCD grammar.
-      for (char ch : c.name) b += (ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r') ? '_' : ch;
-      b += " $end\n";
     }
-    b += "$upscope $end\n$enddefinitions $end\n";
+    // The scope tree, first seen first (names case-insensitive, as in ST).
+    Scope root;
+    for (size_t i = 0; i < columns_.size(); ++i) {
+      std::vector<std::string> parts = pathParts(columns_[i].name);
+      Scope* s = &root;
+      for (size_t p = 0; p + 1 < parts.size(); ++p) {
+        std::string key = lower(parts[p]);
+        auto it = std::find_if(s->children.begin(), s->children.end(), [&](const Scope& c) { return lower(c.name) == key; });
+        if (it == s->children.end()) {
+          s->children.push_back(Scope{parts[p], {}, {}});
+          it = s->children.end() - 1;
+        }
+        s = &*it;
+      }
+      s->vars.emplace_back(i, parts.back());
+    }
+    writeScope(b, root);
+    b += "$enddefinitions $end\n";
     last_.resize(columns_.size());
+    lastText_.resize(columns_.size());
   }
 
   void sample(Time t, const std::vector<TraceValue>& values) override {
     std::string& b = out_->buffer();
     if (first_) {
-      b += '#';
-      b += std::to_string(t);
-      b += "\n$dumpvars\n";
+      stamp(b, t);
+      b += "$dumpvars\n";
       for (size_t i = 0; i < columns_.size(); ++i) {
-        last_[i] = key(i, values[i]);
+        remember(i, values[i]);
         appendValue(b, i, values[i]);
       }
       b += "$end\n";
@@ -161,13 +225,9 @@ public:
     } else {
       bool stamped = false;
       for (size_t i = 0; i < columns_.size(); ++i) {
-        uint64_t k = key(i, values[i]);
-        if (k == last_[i]) continue;
-        last_[i] = k;
+        if (!remember(i, values[i])) continue;
         if (!stamped) {
-          b += '#';
-          b += std::to_string(t);
-          b += '\n';
+          stamp(b, t);
           stamped = true;
         }
         appendValue(b, i, values[i]);
@@ -176,9 +236,54 @@ public:
     out_->flushIfBig();
   }
 
-  bool finish(std::string& error) override { return out_->close(error); }
+  bool finish(Time end, std::string& error) override {
+    // The file ends at the end of the run, not at the last change.
+    if (!stamped_ || end > lastStamp_) stamp(out_->buffer(), end);
+    return out_->close(error);
+  }
 
 private:
+  struct Scope {
+    std::string name;
+    std::vector<Scope> children;
+    std::vector<std::pair<size_t, std::string>> vars;   // column, the last part of its name
+  };
+
+  static std::string lower(std::string s) {
+    for (char& c : s)
+      if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return s;
+  }
+
+  void writeScope(std::string& b, const Scope& s) const {
+    for (const auto& [i, leaf] : s.vars) {
+      const TraceColumn& c = columns_[i];
+      b += "$var ";
+      if (c.kind == TraceColumn::Real) b += "real 64 ";
+      else if (isText(i)) b += "string 1 ";
+      else b += "wire " + std::to_string(c.bits) + ' ';
+      b += ids_[i];
+      b += ' ';
+      b += vcdToken(leaf);
+      b += " $end\n";
+    }
+    for (const Scope& child : s.children) {
+      b += "$scope module " + vcdToken(child.name) + " $end\n";
+      writeScope(b, child);
+      b += "$upscope $end\n";
+    }
+  }
+
+  void stamp(std::string& b, Time t) {
+    b += '#';
+    b += std::to_string(t);
+    b += '\n';
+    stamped_ = true;
+    lastStamp_ = t;
+  }
+
+  bool isText(size_t i) const { return columns_[i].kind == TraceColumn::Text || columns_[i].kind == TraceColumn::Enum; }
+
   // Base-94 over the printable characters '!'..'~'.
   static std::string identifier(size_t i) {
     std::string id;
@@ -194,18 +299,51 @@ private:
     return bits >= 64 ? ~uint64_t(0) : (uint64_t(1) << bits) - 1;
   }
 
-  // What decides "changed": the masked bits, or the double's bit pattern (so
-  // a NaN equals itself and -0.0 differs from 0.0).
-  uint64_t key(size_t i, const TraceValue& v) const {
-    if (columns_[i].kind != TraceColumn::Real) return v.bits & mask(i);
-    uint64_t k;
-    std::memcpy(&k, &v.real, sizeof k);
-    return k;
+  // Records the value of column i; true if it changed.  What decides "changed":
+  // the text, the masked bits, or the double's bit pattern (so a NaN equals
+  // itself and -0.0 differs from 0.0).
+  bool remember(size_t i, const TraceValue& v) {
+    if (isText(i)) {
+      std::string t = textValue(i, v);
+      if (!first_ && t == lastText_[i]) return false;
+      lastText_[i] = std::move(t);
+      return true;
+    }
+    uint64_t k = v.bits & mask(i);
+    if (columns_[i].kind == TraceColumn::Real) std::memcpy(&k, &v.real, sizeof k);
+    if (!first_ && k == last_[i]) return false;
+    last_[i] = k;
+    return true;
+  }
+
+  // A string value: an enum's value name (after `Type#`), else the literal
+  // with whitespace as IEC $hh escapes (so it stays one token).
+  std::string textValue(size_t i, const TraceValue& v) const {
+    std::string_view lit = v.literal;
+    if (columns_[i].kind == TraceColumn::Enum) {
+      size_t hash = lit.find('#');
+      if (hash != std::string_view::npos) lit.remove_prefix(hash + 1);
+    }
+    std::string out;
+    for (char ch : lit) {
+      if (ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r' || ch == '\v' || ch == '\f') {
+        char buf[4];
+        std::snprintf(buf, sizeof buf, "$%02X", static_cast<unsigned char>(ch));
+        out += buf;
+      } else {
+        out += ch;
+      }
+    }
+    return out;
   }
 
   void appendValue(std::string& b, size_t i, const TraceValue& v) const {
     const TraceColumn& c = columns_[i];
-    if (c.kind == TraceColumn::Bool) {
+    if (isText(i)) {
+      b += 's';
+      b += lastText_[i];
+      b += ' ';
+    } else if (c.kind == TraceColumn::Bool) {
       b += (v.bits & 1) ? '1' : '0';
     } else if (c.kind == TraceColumn::Real) {
       char buf[32];
@@ -228,7 +366,10 @@ private:
   std::vector<TraceColumn> columns_;
   std::vector<std::string> ids_;
   std::vector<uint64_t> last_;
+  std::vector<std::string> lastText_;
   bool first_ = true;
+  bool stamped_ = false;
+  Time lastStamp_ = 0;
 };
 
 bool endsWithIgnoreCase(const std::string& s, std::string_view suffix) {
@@ -317,12 +458,6 @@ std::unique_ptr<TraceWriter> TraceWriter::create(const std::string& path, std::v
     error = "trace file '" + path + "' must end in .csv or .vcd";
     return nullptr;
   }
-  if (vcd)
-    for (const TraceColumn& c : columns)
-      if (c.kind == TraceColumn::Text) {
-        error = "'" + c.name + "' cannot be traced to a VCD file: only BOOL, numbers and times can";
-        return nullptr;
-      }
   auto out = std::make_unique<Output>();
   if (!out->open(path, error)) return nullptr;
   if (csv) return std::make_unique<CsvWriter>(std::move(out), std::move(columns), csvOptions);

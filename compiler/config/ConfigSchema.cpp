@@ -150,6 +150,17 @@ bool isName(std::string_view s) {
   return std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isalnum(c) || c == '_'; });
 }
 
+// A unit of measure (Kind::Unit): 1 to 16 UTF-8 characters, no blanks,
+// control characters or characters that delimit it in traces and labels.
+static bool isUnit(std::string_view s) {
+  size_t chars = 0;
+  for (unsigned char c : s) {
+    if (c < 0x21 || c == 0x7f || std::strchr(",\"'=#[]", c)) return false;
+    if ((c & 0xC0) != 0x80) ++chars;
+  }
+  return chars >= 1 && chars <= 16;
+}
+
 // NAME{.NAME | [i, ...]}: what --watch, traces and scenario checks take.
 bool isVarPath(std::string_view s) {
   size_t i = 0;
@@ -225,6 +236,9 @@ struct Validator {
     if (kind == Kind::Name && !isName(*s)) return fail(n, label + " = " + text(n) + ": an ST name is expected (a letter or '_', then letters, digits, '_')");
     if (kind == Kind::VarPath && !isVarPath(*s)) return fail(n, label + " = " + text(n) + ": a variable name is expected (e.g. \"GVL.bStart\", \"MAIN.a[2]\")");
     if (f.nonEmpty && s->empty()) return fail(n, label + ": must not be empty");
+    if (kind == Kind::Unit && !isUnit(*s))
+      return fail(n, label + " = " + text(n) + ": a unit of measure is expected (e.g. \"mm\", \"deg\"): 1 to 16 characters, no blanks, " +
+                         "control characters or any of , \" ' = # [ ]");
     if (!f.choices.empty() && kind == Kind::String &&
         std::find_if(f.choices.begin(), f.choices.end(), [&](const char* c) { return *s == c; }) == f.choices.end()) {
       std::string list;
@@ -240,7 +254,8 @@ struct Validator {
     switch (f.kind) {
       case Kind::String:
       case Kind::Name:
-      case Kind::VarPath: return stringOf(f, f.kind, label, n);
+      case Kind::VarPath:
+      case Kind::Unit: return stringOf(f, f.kind, label, n);
       case Kind::Bool:
         if (!n.is_boolean()) return fail(n, label + " = " + text(n) + ": true or false is expected");
         return true;
@@ -510,7 +525,7 @@ const Schema& projectSchema() {
        num("kv", 0, 10000, true), num("following_error_limit", 0, kPos), num("inertia", 0, 1e12), num("encoder_velocity", -kVel, kVel),
        num("limit_switch_positive", -kPos, kPos), num("limit_switch_negative", -kPos, kPos), ordered(pair("home_switch", -kPos, kPos)),
        num("index_period", 0, kPos), num("index_offset", -kPos, kPos), str("ramp", {"trapez", "quadratic", "quadratic_ramp"}),
-       integer("encoder_channel", 0, 2), tables("fault", axisFault)},
+       integer("encoder_channel", 0, 2), kind("unit", Kind::Unit), tables("fault", axisFault)},
       {{"sw_limit_negative", "sw_limit_positive"}, {"limit_switch_negative", "limit_switch_positive"}},
       {{"increments_per_unit", "encoder_resolution"}, {"increments_per_unit", "units_per_revolution"}, {"increments_per_unit", "gear_ratio"}}};
   static const Schema group{"[[group]]", {required(kind("name", Kind::VarPath)), [] {

@@ -38,6 +38,8 @@ enum class Kind {
   String,       // any string (choices: one of them; nonEmpty)
   Name,         // an ST identifier: letter or '_', then letters, digits, '_'
   VarPath,      // an ST variable path: names separated by '.', with [index] parts
+  Unit,         // a unit of measure ("mm", "deg", "°"): 1 to 16 characters, none of them
+                // blank, a control character or one of , " ' = # [ ]
   Integer,      // a TOML integer in [min, max]
   Number,       // a TOML integer or float, finite, in [min, max] (minOpen: > min)
   Bool,

@@ -375,6 +375,11 @@ gear_ratio|[0.0, 1.0]|gear_ratio = 0.0: out of range
 drive|"lagg"|drive = "lagg": must be "ideal" or "lag"; did you mean "lag"\?
 type|"servoo"|type = "servoo": must be "servo", "virtual", "encoder" or "pulse"; did you mean "servo"\?
 ramp|"trapezoid"|ramp = "trapezoid": must be "trapez", "quadratic" or "quadratic_ramp"; did you mean "trapez"\?
+unit|"m m"|unit = "m m": a unit of measure is expected \(e.g. "mm", "deg"\)
+unit|""|unit = "": a unit of measure is expected
+unit|"seventeen_chars_x"|unit = "seventeen_chars_x": a unit of measure is expected
+unit|"a,b"|unit = "a,b": a unit of measure is expected
+unit|5|unit = 5: a string is expected
 EOF
   project order <<<'[project]
 libraries = ["codesys_sm3"]

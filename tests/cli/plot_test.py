@@ -226,6 +226,228 @@ def case_run():
     print("ok")
 
 
+def panel_ticks(root):
+    """{panel title: [y tick labels]}."""
+    out = {}
+    for g in groups(root, "panel"):
+        title = texts(g, "panel-title")[0]
+        out[title] = texts(g, "ytick")
+    return out
+
+
+def case_ticks():
+    """Nice ticks for any range, integer counters at integers, clean times."""
+    header = ["Axis1.fActVelocity", "Axis1.fActPosition", "MAIN.count", "MAIN.k", "MAIN.tiny", "MAIN.huge"]
+    rows = []
+    for i in range(420):
+        t = i / 100
+        rows.append([seconds(i, 10), real(406 * math.sin(2 * math.pi * t / 4.2) if i != 105 else 406.0),
+                     real(-12 - 938 * t / 4.19), str(i % 2), "3.7", real(1e-7 * t / 4.19), real(1e9 * t / 4.19)])
+    rows.append(["4.199999999", real(0.0), "-950.0", "1", "3.7", "1.0E-07", "1.0E+09"])
+    csv = write_csv("ticks.csv", header, rows)
+    svg = os.path.join(TMP, "ticks.svg")
+    rc, out = stc("plot", csv, "-o", svg)
+    expect(rc == 0, f"exit {rc}: {out}")
+    root = parse(svg)
+    ticks = panel_ticks(root)
+    for title, labels in ticks.items():
+        expect(3 <= len(labels) <= 10, f"{title}: {len(labels)} ticks {labels}")
+        expect(len(set(labels)) == len(labels), f"{title}: labels repeat {labels}")
+    expect(ticks["velocity [u/s]"] == ["-400", "-200", "0", "200", "400"], f"symmetric: {ticks}")
+    expect(all(l.startswith("-") or l == "0" for l in ticks["position [u]"]), f"negative-only: {ticks}")
+    expect(ticks["MAIN.count"] == ["0", "1", "2"], f"integer counter: {ticks['MAIN.count']}")
+    k = [float(x) for x in ticks["MAIN.k"]]
+    expect(min(k) < 3.7 < max(k), f"constant 3.7: {k}")
+    tiny = [float(x) for x in ticks["MAIN.tiny"]]
+    expect(max(tiny) <= 1.2e-7 and max(tiny) >= 0.5e-7, f"tiny: {ticks['MAIN.tiny']}")
+    huge = [float(x) for x in ticks["MAIN.huge"]]
+    expect(max(huge) >= 0.5e9, f"huge: {ticks['MAIN.huge']}")
+    sub = texts(root, "subtitle")[0]
+    expect(sub.endswith("0 s to 4.2 s"), f"subtitle {sub}")
+    # Any data, no crash: one row, NaN, Inf, constant.
+    for name, rows in [("one.csv", [["0", "1.5", "7"]]),
+                       ("nan.csv", [["0", "NaN", "1"], ["0.1", "NaN", "2"]]),
+                       ("inf.csv", [["0", "Inf", "-1"], ["0.1", "-Inf", "1"], ["0.2", "1.0E+308", "2"]]),
+                       ("flat.csv", [["0", "0.0", "0"], ["0.1", "0.0", "0"]])]:
+        path = write_csv(name, ["MAIN.x", "MAIN.n"], rows)
+        rc, out = stc("plot", path, "-o", os.path.join(TMP, name + ".svg"))
+        expect(rc == 0, f"{name}: exit {rc}: {out}")
+        for title, labels in panel_ticks(parse(os.path.join(TMP, name + ".svg"))).items():
+            expect(len(set(labels)) == len(labels) and len(labels) >= 2, f"{name} {title}: {labels}")
+    print("ok")
+
+
+def case_legend():
+    """State bands show their values with their colours; BOOL lanes what high and low mean."""
+    csv = motion_trace()
+    svg = os.path.join(TMP, "legend.svg")
+    rc, out = stc("plot", csv, "-o", svg)
+    expect(rc == 0, f"exit {rc}: {out}")
+    root = parse(svg)
+    legends = groups(root, "state-legend")
+    expect([g.get("data-var") for g in legends] == ["MAIN.state"], "one state legend")
+    expect(texts(legends[0], "state-legend-entry") == ["Idle", "Moving", "Done"], texts(legends[0], "state-legend-entry"))
+    expect(texts(legends[0], "state-legend-type") == ["E_State:"], texts(legends[0], "state-legend-type"))
+    swatch = {t: r.get("fill") for t, r in zip(texts(legends[0], "state-legend-entry"),
+                                               [r for r in legends[0].iter(NS + "rect") if r.get("class") == "swatch"])}
+    band = groups(root, "band")[0]
+    for r in band.iter(NS + "rect"):
+        if r.get("class") == "state":
+            name = r.find(NS + "title").text.split("#")[1]
+            expect(swatch[name] == r.get("fill"), f"{name}: band {r.get('fill')} legend {swatch[name]}")
+    expect(texts(groups(root, "bool-legend")[0], "bool-legend-entry") == ["TRUE", "FALSE"], "BOOL legend")
+    # Many values: at most three rows, the rest counted.
+    rows = [[seconds(i, 10), f"'msg{i}'"] for i in range(300)]
+    many = write_csv("many.csv", ["MAIN.text"], rows)
+    rc, out = stc("plot", many, "-o", svg)
+    expect(rc == 0, f"exit {rc}: {out}")
+    g = groups(parse(svg), "state-legend")[0]
+    more = texts(g, "state-legend-more")
+    expect(len(more) == 1 and more[0].startswith("+") and more[0].endswith(" more"), f"more {more}")
+    shown = len(texts(g, "state-legend-entry"))
+    expect(shown + int(more[0][1:].split()[0]) == 300, f"{shown} shown, {more}")
+    print("ok")
+
+
+def case_units():
+    """The axes' units from the trace's #units line label the panels."""
+    path = os.path.join(TMP, "units.csv")
+    with open(path, "w") as f:
+        f.write("# a comment\n#units,mm,mm,,deg\n")
+        f.write("time,Axis1.fActPosition,Axis1.fActVelocity,MAIN.count,Rot.fActPosition\n")
+        for i in range(100):
+            f.write(f"{seconds(i, 10)},{real(i * 0.5)},{real(50.0)},{i},{real(i * 3.6)}\n")
+    svg = os.path.join(TMP, "units.svg")
+    rc, out = stc("plot", path, "-o", svg)
+    expect(rc == 0, f"exit {rc}: {out}")
+    root = parse(svg)
+    titles = [texts(g, "panel-title")[0] for g in groups(root, "panel")]
+    expect(titles == ["position [mm]", "velocity [mm/s]", "MAIN.count", "position [deg]"], f"titles {titles}")
+    # A #units line that does not match the header.
+    with open(path, "w") as f:
+        f.write("#units,mm\ntime,A,B\n0,1,2\n")
+    rc, out = stc("plot", path, "-o", svg)
+    expect(rc == 1 and "units.csv:1" in out and "#units" in out, f"bad #units: {rc} {out}")
+    # End to end: project.toml [[axis]] unit -> stc run's trace -> stc plot.
+    proj = os.path.join(TMP, "unitproj")
+    os.makedirs(os.path.join(proj, "src"))
+    shutil.copy(os.path.join(SRC, "tests/run/motion_move_absolute.st"), os.path.join(proj, "src", "main.st"))
+
+    def project(unit):
+        with open(os.path.join(proj, "project.toml"), "w") as f:
+            f.write(f'[project]\nname = "unitproj"\nlibraries = ["codesys_sm3"]\n\n[[axis]]\nname = "Axis1"\nunit = {unit}\n')
+    project('"mm"')
+    csv = os.path.join(TMP, "unitrun.csv")
+    rc, out = stc("run", proj, "--for", "100ms", "--trace", "Axis1.fSetPosition,MAIN.cycle,axis1.fSetVelocity",
+                  "--trace-out", csv, "--plot", svg)
+    expect(rc == 0, f"run: {rc} {out}")
+    first = open(csv).readline().strip()
+    expect(first == "#units,mm,,mm", f"units line {first}")
+    titles = [texts(g, "panel-title")[0] for g in groups(parse(svg), "panel")]
+    expect("position [mm]" in titles and "velocity [mm/s]" in titles, f"titles {titles}")
+    for bad in ['""', '"m m"', '"a,b"', '"seventeen_chars_x"', "5"]:
+        project(bad)
+        rc, out = stc("run", proj, "--for", "10ms", "--trace", "Axis1.fSetPosition", "--trace-out", csv)
+        expect(rc != 0 and "unit" in out and "project.toml:7" in out, f"unit = {bad}: {rc} {out}")
+    print("ok")
+
+
+def compare_traces():
+    """Expected and actual: the position differs from 3 s to 5 s, the state from 6 s on,
+    MAIN.bRun is equal, MAIN.old is only expected, MAIN.extra only actual."""
+    header = ["Axis1.fActPosition", "MAIN.bRun", "MAIN.state", "MAIN.old"]
+    exp, act = [], []
+    for i in range(1001):
+        t = i / 100
+        pos = 10.0 * t
+        state = "E_State#Idle" if t < 6 else "E_State#Moving"
+        exp.append([seconds(i, 10), real(pos), "TRUE" if t >= 2 else "FALSE", state, str(i)])
+        apos = pos + (0.5 if 3 <= t < 5 else 1e-12)   # 1e-12: within the default tolerance
+        astate = "E_State#Idle" if t < 6 else "E_State#Done"
+        act.append([seconds(i, 10), real(apos), "TRUE" if t >= 2 else "FALSE", astate, "7"])
+    e = write_csv("expected.csv", header, exp)
+    a = write_csv("actual.csv", ["Axis1.fActPosition", "MAIN.bRun", "MAIN.state", "MAIN.extra"], act)
+    return e, a
+
+
+def x_of_time(root):
+    xt = [(float(t.get("x")), float(t.text)) for t in root.iter(NS + "text") if t.get("class") == "xtick"]
+    (p0, v0), (p1, v1) = xt[0], xt[-1]
+    return lambda v: p0 + (v - v0) * (p1 - p0) / (v1 - v0)
+
+
+def case_compare():
+    e, a = compare_traces()
+    svg = os.path.join(TMP, "compare.svg")
+    rc, out = stc("plot", "--compare", e, a, "-o", svg)
+    expect(rc == 0, f"exit {rc}: {out}")
+    root = parse(svg)
+    title = texts(root, "title")[0]
+    expect(title == "expected.csv vs actual.csv: 4 of 5 variables differ", f"title {title}")
+    only = texts(root, "only")
+    expect(only == ["only in expected: MAIN.old; only in actual: MAIN.extra"], f"only {only}")
+    blocks = {g.get("data-var"): g for g in groups(root, "compare")}
+    expect(list(blocks) == ["Axis1.fActPosition", "MAIN.bRun", "MAIN.state", "MAIN.old", "MAIN.extra"], f"blocks {list(blocks)}")
+    # Both series of the position, the expected one dashed.
+    series = [(g.get("data-var"), g.get("data-trace")) for g in groups(blocks["Axis1.fActPosition"], "series")]
+    expect(series == [("Axis1.fActPosition", "expected"), ("Axis1.fActPosition", "actual")], f"series {series}")
+    dashed = [pl.get("stroke-dasharray") for g in groups(blocks["Axis1.fActPosition"], "series") for pl in g.iter(NS + "polyline")]
+    expect(dashed[0] and not dashed[-1], f"dashes {dashed}")
+    lanes = [g.get("data-trace") for g in groups(blocks["MAIN.bRun"], "lane")]
+    expect(lanes == ["expected", "actual"], f"lanes {lanes}")
+    bands = [g.get("data-trace") for g in groups(blocks["MAIN.state"], "band")]
+    expect(bands == ["expected", "actual"], f"bands {bands}")
+    expect(texts(groups(blocks["MAIN.state"], "state-legend")[0], "state-legend-entry") == ["Idle", "Moving", "Done"], "state legend")
+    # Shading: where the values differ, nowhere else.
+    x = x_of_time(root)
+    shades = lambda var: [(float(r.get("x")), float(r.get("x")) + float(r.get("width")))
+                          for r in blocks[var].iter(NS + "rect") if r.get("class") == "diff"]
+    pos = shades("Axis1.fActPosition")
+    expect(len(pos) == 1 and abs(pos[0][0] - x(3)) < 2 and abs(pos[0][1] - x(5)) < 2, f"position shading {pos} vs {x(3)}..{x(5)}")
+    st = shades("MAIN.state")
+    expect(len(st) == 1 and abs(st[0][0] - x(6)) < 2 and st[0][1] >= x(10) - 2, f"state shading {st}")
+    expect(shades("MAIN.bRun") == [], "equal BOOL shaded")
+    expect(blocks["MAIN.bRun"].get("data-differs") == "false", "MAIN.bRun differs?")
+    # A tolerance that takes in the 0.5 offset (relative to |expected| up to 50): the position is equal.
+    rc, out = stc("plot", "--compare", e, a, "-o", svg, "--tolerance", "0.02", "--vars", "Axis1.fActPosition,MAIN.bRun")
+    root = parse(svg)
+    expect(rc == 0 and texts(root, "title")[0].endswith(": no differences"), f"tolerance: {rc} {out} {texts(root, 'title')}")
+    expect(not [r for r in root.iter(NS + "rect") if r.get("class") == "diff"], "shading within the tolerance")
+    # A trace against itself: no differences; default output name.
+    rc, out = stc("plot", "--compare", e, e)
+    expect(rc == 0 and os.path.exists(e[:-4] + ".compare.svg"), f"default output: {rc} {out}")
+    expect(texts(parse(e[:-4] + ".compare.svg"), "title")[0].endswith(": no differences"), "self compare")
+    # One row each, NaN against NaN and against a number, different lengths: no crash.
+    one_e = write_csv("one_e.csv", ["A", "B"], [["0", "NaN", "1"]])
+    one_a = write_csv("one_a.csv", ["A", "B"], [["0", "NaN", "2"]])
+    rc, out = stc("plot", "--compare", one_e, one_a, "-o", svg)
+    expect(rc == 0 and texts(parse(svg), "title")[0].endswith(": 1 of 2 variables differs"), f"one row: {rc} {out}")
+    short = write_csv("short.csv", ["A", "B"], [["0", "1.0", "1"], ["0.5", "NaN", "1"]])
+    rc, out = stc("plot", "--compare", one_e, short, "-o", svg)
+    expect(rc == 0, f"lengths: {rc} {out}")
+    print("ok")
+
+
+def case_compare_errors():
+    e, a = compare_traces()
+    svg = os.path.join(TMP, "x.svg")
+    for args, code, msg in [(["--compare", e], 2, "--compare"),
+                            (["--compare", e, os.path.join(TMP, "nosuch.csv")], 2, "cannot open"),
+                            (["--compare", e, a, "--tolerance", "-1"], 2, "--tolerance: '-1' is not a finite number >= 0"),
+                            (["--compare", e, a, "--tolerance", "nan"], 2, "--tolerance"),
+                            (["--compare", e, a, "--tolerance", "1e999"], 2, "--tolerance"),
+                            (["--compare", e, a, "--tolerance", "abc"], 2, "--tolerance"),
+                            ([e, "--tolerance", "1e-3"], 2, "requires --compare"),
+                            ([e, "--compare", e, a], 2, "one too many"),
+                            (["--compare", e, a, "--xy", "A,B"], 2, "excludes"),
+                            (["--compare", e, a, "--vars", "MAIN.nosuch"], 2, "no column 'MAIN.nosuch'"),
+                            (["--compare", e, a, "--from", "5s", "--to", "1s"], 2, "--from"),
+                            (["--compare", e, write_csv("empty.csv", ["A"], [])], 1, "has no samples")]:
+        rc, out = stc("plot", *args, "-o", svg)
+        expect(rc == code and msg in out, f"{args}: {rc} {out}")
+    print("ok")
+
+
 # --xy: path plots.  A circle of radius 10 around (5, -3), once round in 2 s (1 ms
 # rows): the commanded path, and an "actual" one lagging 0.1 rad with one NaN row.
 CX, CY, R, LAG = 5.0, -3.0, 10.0, 0.1
@@ -589,4 +811,5 @@ def case_gcode_errors():
 {"structure": case_structure, "vars-window": case_vars_window, "downsample": case_downsample,
  "errors": case_errors, "run": case_run, "xy-circle": case_xy_circle, "xy-window": case_xy_window,
  "xy-errors": case_xy_errors, "run-xy": case_run_xy, "gcode-path": case_gcode_path,
- "gcode-trace": case_gcode_trace, "gcode-errors": case_gcode_errors}[CASE]()
+ "gcode-trace": case_gcode_trace, "gcode-errors": case_gcode_errors, "ticks": case_ticks, "legend": case_legend,
+ "units": case_units, "compare": case_compare, "compare-errors": case_compare_errors}[CASE]()

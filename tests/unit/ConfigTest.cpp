@@ -88,6 +88,18 @@ TEST(ConfigSchema, Messages) {
             "f.toml:4:7: error: [[check]] min = nan: the number must be finite");
   EXPECT_EQ(schemaError("cycles = 1\nduration = \"1s\"\n", scenarioSchema()),
             "f.toml:1:1: error: the scenario needs exactly one of duration or cycles");
+  // [[axis]] unit: 1 to 16 characters (UTF-8), none of them blank, control or a delimiter.
+  for (const char* good : {"\"mm\"", "\"\u00b0\"", "\"m/min\"", "\"sixteen_chars_xx\""}) {
+    std::string error;
+    toml::table t = toml::parse(std::string("[[axis]]\nname = \"A\"\nunit = ") + good + "\n");
+    EXPECT_TRUE(validate(t, projectSchema(), "f.toml", error)) << good << ": " << error;
+  }
+  for (const char* bad : {"\"\"", "\"m m\"", "\"a,b\"", "\"x#\"", "\"tab\\t\"", "\"seventeen_chars_x\""}) {
+    std::string toml = std::string("[[axis]]\nname = \"A\"\nunit = ") + bad + "\n";
+    std::string e = schemaError(toml.c_str(), projectSchema());
+    EXPECT_NE(e.find("f.toml:3:8: error: [[axis]] unit = "), std::string::npos) << bad << ": " << e;
+    EXPECT_NE(e.find("a unit of measure is expected"), std::string::npos) << bad << ": " << e;
+  }
   EXPECT_EQ(closest("trapezoid", {"trapez", "quadratic"}), "trapez");
   EXPECT_EQ(closest("zzz", {"trapez", "quadratic"}), "");
 }

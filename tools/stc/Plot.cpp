@@ -1,4 +1,5 @@
 #include "tools/stc/Plot.h"
+#include "tools/stc/Ticks.h"
 
 #include "config/ConfigSchema.h"
 
@@ -86,10 +87,14 @@ struct Column {
   std::string name;
   Kind kind = Kind::Number;
   bool isTime = false;               // Number: TIME/LTIME values (seconds)
+  bool isInteger = false;            // Number: every value an integer literal (ticks at integers only)
   std::vector<double> num;           // Bool (0/1), Number; NaN = no value
   std::vector<int> state;            // State: index into labels
   std::vector<std::string> labels;   // State: distinct values, first seen first
   std::string labelPrefix;           // State: `Type#` common to every value (dropped in labels)
+  std::string unit;                  // the axis unit from the trace's #units line ("" none)
+  std::string role;                  // --compare: "expected" or "actual" ("" otherwise)
+  bool dashed = false;               // --compare: the expected line
   int color = 0;
 };
 
@@ -128,6 +133,18 @@ bool literalNumber(const std::string& s, double& v, bool& isTime) {
   return any;
 }
 
+// An integer as a trace writes it: 42, -7, 16#FF (REALs always have a '.' or an exponent).
+bool integerLiteral(const std::string& s) {
+  if (s.empty()) return true;   // no value
+  size_t hash = s.find('#');
+  if (hash != std::string::npos) {
+    std::string pre = s.substr(0, hash);
+    return pre == "16" || pre == "8" || pre == "2";
+  }
+  size_t i = s[0] == '-' || s[0] == '+' ? 1 : 0;
+  return i < s.size() && s.find_first_not_of("0123456789", i) == std::string::npos;
+}
+
 Column classify(const std::string& name, const std::vector<std::string>& raw) {
   Column c;
   c.name = name;
@@ -151,6 +168,8 @@ Column classify(const std::string& name, const std::vector<std::string>& raw) {
   if (allNum) {
     c.kind = Kind::Number;
     c.isTime = allTime && !raw.empty();
+    c.isInteger = !c.isTime && std::any_of(raw.begin(), raw.end(), [](const std::string& s) { return !s.empty(); }) &&
+                  std::all_of(raw.begin(), raw.end(), integerLiteral);
     c.num.reserve(raw.size());
     for (const std::string& s : raw) {
       double v;
@@ -179,15 +198,27 @@ Column classify(const std::string& name, const std::vector<std::string>& raw) {
   return c;
 }
 
+// The name shown for a column: `X (expected)` when compared.
+std::string shownName(const Column& c) { return c.role.empty() ? c.name : c.name + " (" + c.role + ")"; }
+
+// Column i of the trace, classified, with its unit.
+Column columnOf(const TraceTable& trace, size_t i) {
+  Column c = classify(trace.names[i], trace.columns[i]);
+  if (i < trace.units.size()) c.unit = trace.units[i];
+  return c;
+}
+
 // What a numeric variable measures, from its name: the panel it goes into.
 struct KindInfo {
   const char* key;
   const char* label;
   const char* unit;
 };
+// The unit of the kinds 0..3 is the axis unit (project.toml [[axis]] unit,
+// carried by the trace's #units line; "u" when none) per second^n.
 const KindInfo kKinds[] = {
-    {"position", "position", "u"},      {"velocity", "velocity", "u/s"},
-    {"acceleration", "acceleration", "u/s²"}, {"jerk", "jerk", "u/s³"},
+    {"position", "position", ""},       {"velocity", "velocity", "/s"},
+    {"acceleration", "acceleration", "/s²"}, {"jerk", "jerk", "/s³"},
     {"torque", "torque", ""},           {"current", "current", ""},
     {"time", "time", "s"},              {"other", "", ""},
 };
@@ -195,6 +226,12 @@ const KindInfo kKinds[] = {
 bool endsWith(const std::string& s, const char* suffix) {
   size_t n = std::strlen(suffix);
   return s.size() >= n && s.compare(s.size() - n, n, suffix) == 0;
+}
+
+// The unit of a value of kind `kind` in column c: "mm/s" for a velocity of an axis in mm.
+std::string unitOf(int kind, const Column& c) {
+  if (kind > 3) return kKinds[kind].unit;
+  return (c.unit.empty() ? "u" : c.unit) + kKinds[kind].unit;
 }
 
 int kindOf(const Column& c) {
@@ -212,71 +249,6 @@ int kindOf(const Column& c) {
 }
 
 // ------------------------------------------------------------------ numbers and ticks
-
-double niceStep(double raw) {
-  if (!(raw > 0) || !std::isfinite(raw)) return 1;
-  double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  double r = raw / mag;
-  double n = r <= 1.0 + 1e-9 ? 1 : r <= 2.0 + 1e-9 ? 2 : r <= 5.0 + 1e-9 ? 5 : 10;
-  return n * mag;
-}
-
-double nextNice(double step) { return niceStep(step * 1.0001 + step * 0.5); }
-
-std::string tickLabel(double v, double step) {
-  if (std::fabs(v) < step * 1e-6) return "0";
-  double mag = std::max(std::fabs(v), step);
-  if (mag >= 1e7 || step < 1e-6) {
-    std::string s = fmt::format("{:.3g}", v);
-    return s;
-  }
-  int decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)));
-  return fmt::format("{:.{}f}", v, decimals);
-}
-
-// Seconds for reading: up to 9 decimals, no trailing zeros.
-std::string seconds(double v) {
-  std::string t = fmt::format("{:.9f}", v);
-  t.erase(t.find_last_not_of('0') + 1);
-  if (t.back() == '.') t.pop_back();
-  return t == "-0" ? "0" : t;
-}
-
-std::vector<double> ticks(double lo, double hi, double step) {
-  std::vector<double> out;
-  double first = std::ceil(lo / step - 1e-9);
-  for (double k = first;; k += 1) {
-    double v = k * step;
-    if (v > hi + step * 1e-9 || out.size() > 200) break;
-    out.push_back(v);
-  }
-  return out;
-}
-
-// Text width estimate for 11 px sans-serif.
-double textWidth(const std::string& s, double perChar = 6.6) {
-  size_t n = 0;
-  for (unsigned char c : s)
-    if ((c & 0xC0) != 0x80) ++n;
-  return static_cast<double>(n) * perChar;
-}
-
-// A step that gives about `target` ticks over [lo, hi] whose labels fit in `pixels`.
-double chooseStep(double lo, double hi, double pixels, double minGap, bool horizontal, int target) {
-  double step = niceStep((hi - lo) / std::max(1, target));
-  for (int guard = 0; guard < 40; ++guard) {
-    double px = step / (hi - lo) * pixels;
-    double need = minGap;
-    if (horizontal) {
-      double w = 0;
-      for (double v : ticks(lo, hi, step)) w = std::max(w, textWidth(tickLabel(v, step)));
-      need = w + minGap;
-    }
-    if (px >= need) break;
-    step = nextNice(step);
-  }
-  return step;
-}
 
 std::string xmlEscape(const std::string& s) {
   std::string out;
@@ -348,6 +320,7 @@ Window timeWindow(const TraceTable& trace, const PlotOptions& options) {
 // flat range is widened around its value.
 void padRange(double& lo, double& hi) {
   if (!(lo <= hi)) lo = 0, hi = 1;
+  lo = std::clamp(lo, -1e300, 1e300), hi = std::clamp(hi, -1e300, 1e300);   // spans stay finite
   if (hi - lo <= std::max(std::fabs(hi), std::fabs(lo)) * 1e-12) {
     double d = lo == 0 ? 1 : std::fabs(lo) * 0.1;
     lo -= d, hi += d;
@@ -358,7 +331,11 @@ void padRange(double& lo, double& hi) {
 }
 
 // The document, its background, the title and the line under it.
-std::string windowText(const Window& w) { return fmt::format("{} samples, {} s to {} s", w.r1 - w.r0, seconds(w.t0), seconds(w.t1)); }
+// Times as short as tells them apart at a millionth of the window (4.2, not 4.199999999).
+std::string windowText(const Window& w) {
+  const double tol = std::max(5e-10, (w.t1 - w.t0) * 1e-6);
+  return fmt::format("{} samples, {} s to {} s", w.r1 - w.r0, formatSeconds(w.t0, tol), formatSeconds(w.t1, tol));
+}
 
 void openSvg(Svg& s, double width, double height, double left, const std::string& title, const std::string& subtitle) {
   s.add(R"(<?xml version="1.0" encoding="UTF-8"?>)");
@@ -431,6 +408,8 @@ std::vector<int> columnStates(const Layout& L, const std::vector<double>& time, 
 struct Panel {
   int kind;
   std::vector<size_t> series;   // indices into columns
+  std::string unit;             // of every series ("" none)
+  std::string title;            // empty: from the kind
 };
 
 void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Column>& cols, const std::vector<double>& t, double top,
@@ -442,15 +421,19 @@ void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Colu
       double v = cols[ci].num[r];
       if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
     }
-  padRange(lo, hi);
-  double step = chooseStep(lo, hi, height, 22, false, std::max(2, static_cast<int>(height / 40)));
+  TickRequest tr;
+  tr.pixels = height;
+  tr.minGap = 22;
+  tr.integer = std::all_of(p.series.begin(), p.series.end(), [&](size_t ci) { return cols[ci].isInteger; });
+  const TickAxis axis = niceAxis(lo, hi, tr);
+  lo = axis.lo, hi = axis.hi;
   auto y = [&](double v) { return top + height - (v - lo) / (hi - lo) * height; };
-  std::string title = p.kind != 7 ? k.label : p.series.size() == 1 ? cols[p.series[0]].name : "values";
-  if (*k.unit) title += fmt::format(" [{}]", k.unit);
+  std::string title = !p.title.empty() ? p.title : p.kind != 7 ? k.label : p.series.size() == 1 ? cols[p.series[0]].name : "values";
+  if (!p.unit.empty()) title += fmt::format(" [{}]", p.unit);
   s.add(R"(<g class="panel" data-kind="{}">)", p.kind == 7 ? "other" : k.key);
   s.add(R"(<text class="panel-title" x="{}" y="{}" font-weight="bold">{}</text>)", num(L.left), num(top - 6), xmlEscape(title));
   s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#ffffff" stroke="#999999"/>)", num(L.left), num(top), num(L.plotW), num(height));
-  for (double v : ticks(lo, hi, step)) yTick(s, L.left, L.left + L.plotW, y(v), tickLabel(v, step));
+  for (size_t i = 0; i < axis.ticks.size(); ++i) yTick(s, L.left, L.left + L.plotW, y(axis.ticks[i]), axis.labels[i]);
   for (double tt : timeTicks)
     s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#e3e3e3"/>)", num(L.x(tt)), num(top), num(L.x(tt)), num(top + height));
   s.add(R"(<clipPath id="clip{}"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath>)", index, num(L.left), num(top - 1),
@@ -502,11 +485,14 @@ void drawNumeric(Svg& s, const Layout& L, const Panel& p, const std::vector<Colu
       }
     }
     endLine();
-    s.add(R"s(<g class="series" data-var="{}" clip-path="url(#clip{})">)s", xmlEscape(c.name), index);
+    const char* dash = c.dashed ? "5 3" : nullptr;
+    std::string role = c.role.empty() ? "" : fmt::format(R"( data-trace="{}")", c.role);
+    s.add(R"s(<g class="series" data-var="{}"{} clip-path="url(#clip{})">)s", xmlEscape(c.name), role, index);
     for (const std::string& l : lines)
-      s.add(R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round" points="{}"/>)", color, l);
+      s.add(R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round"{} points="{}"/>)", color,
+            dash ? fmt::format(R"( stroke-dasharray="{}")", dash) : "", l);
     s.add("</g>");
-    legendEntry(s, L.left + L.plotW + 12, ly, color, c.name, L.legend - 12);
+    legendEntry(s, L.left + L.plotW + 12, ly, color, shownName(c), L.legend - 12, dash);
     ly += 16;
   }
   s.add("</g>");
@@ -519,7 +505,7 @@ void drawBool(Svg& s, const Layout& L, const Column& c, const std::vector<double
     return std::isnan(v) ? -1 : v != 0 ? 1 : 0;
   });
   double hiY = top + 3, loY = top + height - 3;
-  s.add(R"(<g class="lane" data-var="{}">)", xmlEscape(c.name));
+  s.add(R"(<g class="lane" data-var="{}"{}>)", xmlEscape(c.name), c.role.empty() ? "" : fmt::format(R"( data-trace="{}")", c.role));
   s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#dddddd"/>)", num(L.left), num(top), num(L.plotW), num(height));
   std::string wave, fill, mixed;
   double px = L.plotW / L.pixels;
@@ -544,13 +530,13 @@ void drawBool(Svg& s, const Layout& L, const Column& c, const std::vector<double
   if (!mixed.empty()) s.add(R"(<path d="{}" fill="{}" fill-opacity="0.6"/>)", mixed, color);
   if (!wave.empty()) s.add(R"(<path class="wave" d="{}" fill="none" stroke="{}" stroke-width="1.5"/>)", wave, color);
   s.add(R"(<text class="lane-name" x="{}" y="{}" fill="{}">{}</text>)", num(L.left + L.plotW + 12), num(top + height / 2 + 4), color,
-        xmlEscape(fitText(c.name, L.legend - 14)));
+        xmlEscape(fitText(shownName(c), L.legend - 14)));
   s.add("</g>");
 }
 
 void drawState(Svg& s, const Layout& L, const Column& c, const std::vector<double>& time, double top, double height) {
   std::vector<int> cols = columnStates(L, time, [&](size_t r) { return c.state[r]; });
-  s.add(R"(<g class="band" data-var="{}">)", xmlEscape(c.name));
+  s.add(R"(<g class="band" data-var="{}"{}>)", xmlEscape(c.name), c.role.empty() ? "" : fmt::format(R"( data-trace="{}")", c.role));
   s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#fafafa" stroke="#dddddd"/>)", num(L.left), num(top), num(L.plotW), num(height));
   double px = L.plotW / L.pixels;
   for (int i = 0; i < L.pixels;) {
@@ -572,7 +558,115 @@ void drawState(Svg& s, const Layout& L, const Column& c, const std::vector<doubl
     i = j;
   }
   s.add(R"(<text class="lane-name" x="{}" y="{}">{}</text>)", num(L.left + L.plotW + 12), num(top + height / 2 + 4),
-        xmlEscape(fitText(c.name, L.legend - 14)));
+        xmlEscape(fitText(shownName(c), L.legend - 14)));
+  s.add("</g>");
+}
+
+// The shared time axis: grid through every panel and lane from gridTop to
+// gridBottom, labels below.  A trace of 10 s at 1 ms ends at 9.999 s: with
+// `extend` the axis runs on to the next round tick when that is close (2 %
+// of the range).  The tick times.
+std::vector<double> drawTimeAxis(Svg& s, Layout& L, double gridTop, double gridBottom, bool extend) {
+  TickRequest tr;
+  tr.pixels = L.plotW;
+  tr.minGap = 14;
+  tr.horizontal = true;
+  tr.pad = false;
+  double xstep = chooseStep(L.t0, L.t1, tr);
+  if (extend) {
+    double end = std::ceil(L.t1 / xstep - 1e-9) * xstep;
+    if (end > L.t1 && end - L.t1 <= 0.02 * (L.t1 - L.t0)) {
+      L.t1 = end;
+      xstep = chooseStep(L.t0, L.t1, tr);   // one more tick may be one too many
+    }
+  }
+  s.add(R"(<g class="time-axis">)");
+  std::vector<double> ticks = tickValues(L.t0, L.t1, xstep);
+  const std::vector<std::string> labels = tickLabels(ticks, xstep);
+  for (size_t i = 0; i < ticks.size(); ++i) xTick(s, L.x(ticks[i]), gridTop, gridBottom, "#eeeeee", labels[i]);
+  s.add(R"(<text class="xlabel" x="{}" y="{}" text-anchor="middle">time [s]</text>)", num(L.left + L.plotW / 2), num(gridBottom + 34));
+  s.add("</g>");
+  return ticks;
+}
+
+// ------------------------------------------------------------------ legends of lanes and bands
+
+const double kLegendRowH = 14;
+
+// A state band's legend: each value with its colour, in rows under the band.
+struct StateLegend {
+  std::vector<std::vector<size_t>> rows;   // label indices per row
+  size_t omitted = 0;                      // values beyond the last row
+};
+
+std::string stateName(const Column& c, size_t v) { return c.labels[v].substr(c.labelPrefix.size()); }
+
+double stateEntryWidth(const Column& c, size_t v) { return 14 + textWidth(stateName(c, v), 6.2) + 12; }
+
+StateLegend stateLegend(const Column& c, double width) {
+  const size_t kMaxRows = 3;
+  StateLegend g;
+  // The enum's type first (`E_State:`), then the values, first seen first
+  // (an empty one is no value: --compare past the end of a trace).
+  double x = c.labelPrefix.empty() ? 0 : textWidth(c.labelPrefix, 6.2) + 8;
+  g.rows.emplace_back();
+  for (size_t v = 0; v < c.labels.size(); ++v) {
+    if (c.labels[v].empty()) continue;
+    double w = stateEntryWidth(c, v);
+    if (x + w > width && !g.rows.back().empty()) {
+      if (g.rows.size() == kMaxRows) {
+        g.omitted = c.labels.size() - v;
+        break;
+      }
+      g.rows.emplace_back();
+      x = 0;
+    }
+    g.rows.back().push_back(v);
+    x += w;
+  }
+  // Room for "+N more" at the end of the last row.
+  while (g.omitted && !g.rows.back().empty()) {
+    double used = 0;
+    for (size_t v : g.rows.back()) used += stateEntryWidth(c, v);
+    if (used + 70 <= width) break;
+    g.rows.back().pop_back();
+    ++g.omitted;
+  }
+  return g;
+}
+
+void drawStateLegend(Svg& s, double left, double top, const Column& c, const StateLegend& g) {
+  s.add(R"(<g class="state-legend" data-var="{}">)", xmlEscape(c.name));
+  double y = top + 10;
+  for (size_t r = 0; r < g.rows.size(); ++r) {
+    double x = left;
+    if (r == 0 && !c.labelPrefix.empty()) {
+      std::string type = c.labelPrefix.substr(0, c.labelPrefix.size() - 1) + ":";
+      s.add(R"(<text class="state-legend-type" x="{}" y="{}" font-size="10" fill="#666666">{}</text>)", num(x), num(y), xmlEscape(type));
+      x += textWidth(c.labelPrefix, 6.2) + 8;
+    }
+    for (size_t v : g.rows[r]) {
+      s.add(R"(<rect class="swatch" x="{}" y="{}" width="10" height="10" fill="{}" stroke="#999999" stroke-width="0.5"/>)", num(x), num(y - 9),
+            kBandColors[v % 12]);
+      s.add(R"(<text class="state-legend-entry" x="{}" y="{}" font-size="10">{}</text>)", num(x + 14), num(y), xmlEscape(stateName(c, v)));
+      x += stateEntryWidth(c, v);
+    }
+    if (r + 1 == g.rows.size() && g.omitted)
+      s.add(R"(<text class="state-legend-more" x="{}" y="{}" font-size="10" fill="#666666">+{} more</text>)", num(x), num(y), g.omitted);
+    y += kLegendRowH;
+  }
+  s.add("</g>");
+}
+
+// What the digital lanes show: shaded high = TRUE, low line = FALSE.
+void drawBoolLegend(Svg& s, double left, double top) {
+  const double y = top + 10;
+  s.add(R"(<g class="bool-legend">)");
+  s.add(R"(<rect x="{}" y="{}" width="16" height="10" fill="#555555" fill-opacity="0.18"/>)", num(left), num(y - 9));
+  s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#555555" stroke-width="1.5"/>)", num(left), num(y - 9), num(left + 16), num(y - 9));
+  s.add(R"(<text class="bool-legend-entry" x="{}" y="{}" font-size="10">TRUE</text>)", num(left + 20), num(y));
+  s.add(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#555555" stroke-width="1.5"/>)", num(left + 62), num(y), num(left + 78), num(y));
+  s.add(R"(<text class="bool-legend-entry" x="{}" y="{}" font-size="10">FALSE</text>)", num(left + 82), num(y));
   s.add("</g>");
 }
 
@@ -593,7 +687,10 @@ std::string pathAxisLabel(const std::vector<const Column*>& cols) {
   }
   std::string label;
   for (const std::string& n : names) label += (label.empty() ? "" : ", ") + n;
-  if (*kKinds[kind].unit) label += fmt::format(" [{}]", kKinds[kind].unit);
+  std::string unit = cols.empty() ? "" : unitOf(kind, *cols[0]);
+  for (const Column* c : cols)
+    if (unitOf(kind, *c) != unit) unit.clear();
+  if (!unit.empty()) label += fmt::format(" [{}]", unit);
   return label;
 }
 
@@ -780,14 +877,14 @@ std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options, c
   for (const auto& [xn, yn] : options.xy) {
     size_t xi = findColumn(trace, xn), yi = findColumn(trace, yn);
     if (xi == std::string::npos || yi == std::string::npos) continue;
-    paths.push_back({classify(trace.names[xi], trace.columns[xi]), classify(trace.names[yi], trace.columns[yi]),
+    paths.push_back({columnOf(trace, xi), columnOf(trace, yi),
                      kLineColors[paths.size() % 10]});
   }
   // --rapid: the flag column (Bool or Number; NaN counts as not rapid).
   std::optional<Column> rapidCol;
   if (!options.rapid.empty()) {
     size_t ri = findColumn(trace, options.rapid);
-    if (ri != std::string::npos) rapidCol = classify(trace.names[ri], trace.columns[ri]);
+    if (ri != std::string::npos) rapidCol = columnOf(trace, ri);
     if (rapidCol && rapidCol->kind == Kind::State) rapidCol.reset();
   }
   auto rapidAt = [&](size_t r) { return rapidCol && std::isfinite(rapidCol->num[r]) && rapidCol->num[r] != 0; };
@@ -846,9 +943,16 @@ std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options, c
   s.add(R"(<g class="panel" data-kind="path">)");
   s.add(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#ffffff" stroke="#999999"/>)", num(left), num(top), num(side), num(side));
   // One step on both axes keeps the grid square.
-  double step = chooseStep(xlo, xhi, side, 14, true, std::max(2, static_cast<int>(side / 90)));
-  for (double v : ticks(xlo, xhi, step)) xTick(s, px(v), top, top + side, "#e3e3e3", tickLabel(v, step));
-  for (double v : ticks(ylo, yhi, step)) yTick(s, left, left + side, py(v), tickLabel(v, step));
+  TickRequest tr;
+  tr.pixels = side;
+  tr.minGap = 14;
+  tr.horizontal = true;
+  tr.pad = false;
+  const double step = chooseStep(xlo, xhi, tr);
+  const std::vector<double> xt = tickValues(xlo, xhi, step), yt = tickValues(ylo, yhi, step);
+  const std::vector<std::string> xl = tickLabels(xt, step), yl = tickLabels(yt, step);
+  for (size_t i = 0; i < xt.size(); ++i) xTick(s, px(xt[i]), top, top + side, "#e3e3e3", xl[i]);
+  for (size_t i = 0; i < yt.size(); ++i) yTick(s, left, left + side, py(yt[i]), yl[i]);
   std::vector<const Column*> xs, ys;
   for (const Path& p : paths) xs.push_back(&p.x), ys.push_back(&p.y);
   std::string xlabel = pathAxisLabel(xs), ylabel = pathAxisLabel(ys);
@@ -975,6 +1079,229 @@ std::string renderPathSvg(const TraceTable& trace, const PlotOptions& options, c
   return std::move(s.out);
 }
 
+// ------------------------------------------------------------------ --compare
+
+// Column `col` of `t` at the times of `grid`: a sample holds until the next
+// one; before the first and after the last sample there is no value ("").
+std::vector<std::string> resample(const TraceTable& t, size_t col, const std::vector<double>& grid) {
+  std::vector<std::string> out(grid.size());
+  if (col == std::string::npos || t.time.empty()) return out;
+  size_t r = 0;
+  for (size_t g = 0; g < grid.size(); ++g) {
+    while (r + 1 < t.time.size() && t.time[r + 1] <= grid[g]) ++r;
+    if (grid[g] >= t.time.front() && grid[g] <= t.time.back()) out[g] = t.columns[col][r];
+  }
+  return out;
+}
+
+// Whether an expected and an actual value differ: different text, unless
+// both are numbers within the tolerance (|a - e| <= tol * max(1, |e|), as stc test).
+bool valuesDiffer(const std::string& e, const std::string& a, double tol) {
+  if (e == a) return false;
+  double x, y;
+  bool tx, ty;
+  if (e.empty() || a.empty() || !literalNumber(e, x, tx) || !literalNumber(a, y, ty)) return true;
+  if (std::isnan(x) || std::isnan(y)) return std::isnan(x) != std::isnan(y);
+  if (std::isinf(x) || std::isinf(y)) return x != y;
+  return !(std::fabs(y - x) <= tol * std::max(1.0, std::fabs(x)));
+}
+
+// One variable of a comparison: its expected and actual columns (either
+// missing when only one trace has it) and the rows where they differ.
+struct Compared {
+  std::string name;
+  std::optional<Column> expected, actual;
+  std::vector<char> differs;   // per row of the merged time grid
+  bool anyDiffers = false;     // in the window
+};
+
+// Per pixel column: whether a differing row covers it (a row lasts until the next one).
+std::vector<char> diffColumns(const Layout& L, const std::vector<double>& time, const std::vector<char>& differs) {
+  std::vector<char> out(static_cast<size_t>(L.pixels), 0);
+  for (size_t r = L.r0 > 0 ? L.r0 - 1 : 0; r < L.r1; ++r) {
+    if (!differs[r]) continue;
+    int c0 = L.column(time[r]);
+    int c1 = r + 1 < time.size() ? std::max(c0, L.column(time[r + 1]) - 1) : c0;
+    if (time[r] > L.t1) continue;
+    for (int c = c0; c <= c1; ++c) out[static_cast<size_t>(c)] = 1;
+  }
+  return out;
+}
+
+// Red shading over [top, top + height] where the pixel columns differ.
+void drawDiffShading(Svg& s, const Layout& L, const std::vector<char>& cols, double top, double height, const std::string& var) {
+  double px = L.plotW / L.pixels;
+  for (int i = 0; i < L.pixels;) {
+    if (!cols[static_cast<size_t>(i)]) {
+      ++i;
+      continue;
+    }
+    int j = i;
+    while (j < L.pixels && cols[static_cast<size_t>(j)]) ++j;
+    const double t0 = L.t0 + (L.t1 - L.t0) * i / L.pixels, t1 = L.t0 + (L.t1 - L.t0) * j / L.pixels;
+    const double tol = std::max(5e-10, (L.t1 - L.t0) * 1e-6);
+    s.add(R"(<rect class="diff" data-var="{}" data-from="{}" data-to="{}" x="{}" y="{}" width="{}" height="{}" fill="#d62728" fill-opacity="0.15" stroke="#d62728" stroke-opacity="0.6"/>)",
+          xmlEscape(var), formatSeconds(t0, tol), formatSeconds(t1, tol), num(L.left + i * px), num(top), num((j - i) * px), num(height));
+    i = j;
+  }
+}
+
+std::string renderCompare(const TraceTable& exp, const TraceTable& act, const PlotOptions& options, double tol,
+                          const std::string& expName, const std::string& actName) {
+  // The merged time grid: every sample time of either trace.
+  std::vector<double> grid;
+  std::merge(exp.time.begin(), exp.time.end(), act.time.begin(), act.time.end(), std::back_inserter(grid));
+  grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
+  TraceTable merged;
+  merged.time = grid;
+  Window w = timeWindow(merged, options);
+
+  // The variables: the expected trace's, then those only in the actual one (--vars: those, in order).
+  std::vector<std::string> names;
+  auto has = [&](const std::string& n) {
+    return std::any_of(names.begin(), names.end(), [&](const std::string& x) { return lower(x) == lower(n); });
+  };
+  if (!options.vars.empty()) {
+    for (const std::string& v : options.vars) {
+      size_t i = findColumn(exp, v), j = findColumn(act, v);
+      std::string n = i != std::string::npos ? exp.names[i] : j != std::string::npos ? act.names[j] : v;
+      if (!has(n)) names.push_back(n);
+    }
+  } else {
+    for (const std::string& n : exp.names)
+      if (!has(n)) names.push_back(n);
+    for (const std::string& n : act.names)
+      if (!has(n)) names.push_back(n);
+  }
+  std::vector<Compared> vars;
+  std::vector<std::string> onlyExpected, onlyActual;
+  for (const std::string& n : names) {
+    Compared v;
+    v.name = n;
+    size_t ei = findColumn(exp, n), ai = findColumn(act, n);
+    std::vector<std::string> e = resample(exp, ei, grid), a = resample(act, ai, grid);
+    // One classification for both, so that they share a kind and state colours.
+    std::vector<std::string> both = e;
+    both.insert(both.end(), a.begin(), a.end());
+    Column c = classify(n, both);
+    c.unit = ei != std::string::npos && ei < exp.units.size() && !exp.units[ei].empty() ? exp.units[ei]
+             : ai != std::string::npos && ai < act.units.size()                          ? act.units[ai]
+                                                                                          : "";
+    auto half = [&](bool second, const char* role) {
+      Column h = c;
+      h.role = role;
+      const size_t n0 = second ? grid.size() : 0;
+      if (!h.num.empty()) h.num.assign(c.num.begin() + static_cast<long>(n0), c.num.begin() + static_cast<long>(n0 + grid.size()));
+      if (!h.state.empty())
+        h.state.assign(c.state.begin() + static_cast<long>(n0), c.state.begin() + static_cast<long>(n0 + grid.size()));
+      return h;
+    };
+    if (ei != std::string::npos) v.expected = half(false, "expected");
+    if (ai != std::string::npos) v.actual = half(true, "actual");
+    if (v.expected) v.expected->dashed = true, v.expected->color = 0;
+    if (v.actual) v.actual->color = 1;
+    v.differs.resize(grid.size());
+    for (size_t r = 0; r < grid.size(); ++r) {
+      v.differs[r] = (ei == std::string::npos || ai == std::string::npos) ? 0 : valuesDiffer(e[r], a[r], tol);
+      if (v.differs[r] && r >= w.r0 && r < w.r1) v.anyDiffers = true;
+    }
+    if (ei == std::string::npos) onlyActual.push_back(n);
+    if (ai == std::string::npos) onlyExpected.push_back(n);
+    vars.push_back(std::move(v));
+  }
+  // A state column that was never sampled in either trace has no labels: no value anywhere.
+  for (Compared& v : vars)
+    for (std::optional<Column>* c : {&v.expected, &v.actual})
+      if (*c && (*c)->kind == Kind::State)
+        for (int& st : (*c)->state)
+          if (st >= 0 && (*c)->labels[static_cast<size_t>(st)].empty()) st = -1;
+
+  Layout L;
+  double maxName = 0;
+  for (const Compared& v : vars) maxName = std::max(maxName, textWidth(v.name + " (expected)"));
+  L.legend = std::clamp(maxName + 44, 150.0, 300.0);
+  L.plotW = L.width - L.left - L.legend - 8;
+  L.pixels = static_cast<int>(L.plotW);
+  L.t0 = w.t0, L.t1 = w.t1, L.r0 = w.r0, L.r1 = w.r1;
+
+  // Blocks, top to bottom: a panel per number, two lanes per BOOL, two bands per state.
+  const double panelH = 120, panelGap = 34, laneH = 22, laneGap = 4, bandH = 24;
+  const bool notes = !onlyExpected.empty() || !onlyActual.empty();
+  const double top0 = notes ? 88 : 72;
+  struct Block {
+    double top = 0, height = 0;   // of the data area (shaded where the values differ)
+    double legendTop = 0;         // states: the legend under the bands
+    StateLegend legend;
+  };
+  std::vector<Block> blocks;
+  double y = top0;
+  for (const Compared& v : vars) {
+    const Column& c = v.expected ? *v.expected : *v.actual;
+    const double n = (v.expected && v.actual) ? 2 : 1;
+    Block b;
+    if (c.kind == Kind::Number) {
+      y += 14;   // the panel title
+      b.top = y, b.height = panelH;
+      y += panelH + panelGap - 14;
+    } else if (c.kind == Kind::Bool) {
+      b.top = y, b.height = n * (laneH + laneGap) - laneGap;
+      y += b.height + laneGap + 12;
+    } else {
+      b.top = y, b.height = n * (bandH + laneGap) - laneGap;
+      b.legend = stateLegend(c, L.plotW);
+      b.legendTop = y + b.height + 2;
+      y += b.height + 2 + kLegendRowH * static_cast<double>(b.legend.rows.size()) + laneGap + 12;
+    }
+    blocks.push_back(std::move(b));
+  }
+  const double bottom = vars.empty() ? top0 + 40 : y - 12;
+  const double height = bottom + 48;
+
+  size_t differing = 0;
+  for (const Compared& v : vars) differing += (v.anyDiffers || !v.expected || !v.actual) ? 1 : 0;
+  std::string title = options.title.empty() ? expName + " vs " + actName : options.title;
+  title += differing ? fmt::format(": {} of {} variable{} differ{}", differing, vars.size(), vars.size() == 1 ? "" : "s", differing == 1 ? "s" : "")
+                     : vars.empty() ? ": no variables" : ": no differences";
+  Svg s;
+  openSvg(s, L.width, height, L.left, title,
+          fmt::format("{}; tolerance {}; expected dashed, actual solid, differences shaded", windowText(w), tol));
+  if (notes) {
+    std::string text;
+    auto list = [](const std::vector<std::string>& v) {
+      std::string out;
+      for (const std::string& n : v) out += (out.empty() ? "" : ", ") + n;
+      return out;
+    };
+    if (!onlyExpected.empty()) text += "only in expected: " + list(onlyExpected);
+    if (!onlyActual.empty()) text += (text.empty() ? "" : "; ") + std::string("only in actual: ") + list(onlyActual);
+    s.add(R"(<text class="only" x="{}" y="56" fill="#d62728">{}</text>)", num(L.left), xmlEscape(fitText(text, L.width - L.left - 8)));
+  }
+  if (vars.empty()) s.add(R"(<text x="{}" y="{}">no variables</text>)", num(L.left), num(top0 + 20));
+  const std::vector<double> timeTicks = drawTimeAxis(s, L, top0, bottom, !options.to);
+  for (size_t i = 0; i < vars.size(); ++i) {
+    const Compared& v = vars[i];
+    const Block& b = blocks[i];
+    std::vector<Column> cols;
+    if (v.expected) cols.push_back(*v.expected);
+    if (v.actual) cols.push_back(*v.actual);
+    s.add(R"(<g class="compare" data-var="{}" data-differs="{}">)", xmlEscape(v.name), v.anyDiffers ? "true" : "false");
+    if (cols[0].kind == Kind::Number) {
+      Panel p{kindOf(cols[0]), {}, unitOf(kindOf(cols[0]), cols[0]), v.name};
+      for (size_t k = 0; k < cols.size(); ++k) p.series.push_back(k);
+      drawNumeric(s, L, p, cols, grid, b.top, b.height, static_cast<int>(i), timeTicks);
+    } else if (cols[0].kind == Kind::Bool) {
+      for (size_t k = 0; k < cols.size(); ++k) drawBool(s, L, cols[k], grid, b.top + static_cast<double>(k) * (laneH + laneGap), laneH);
+    } else {
+      for (size_t k = 0; k < cols.size(); ++k) drawState(s, L, cols[k], grid, b.top + static_cast<double>(k) * (bandH + laneGap), bandH);
+      drawStateLegend(s, L.left, b.legendTop, cols[0], b.legend);
+    }
+    if (v.anyDiffers) drawDiffShading(s, L, diffColumns(L, grid, v.differs), b.top, b.height, v.name);
+    s.add("</g>");
+  }
+  s.add("</svg>");
+  return std::move(s.out);
+}
+
 }  // namespace
 
 bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, bool& missing) {
@@ -992,19 +1319,34 @@ bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, 
     return false;
   }
   std::string line;
-  std::vector<std::string> fields;
-  if (!std::getline(in, line)) {
+  std::vector<std::string> fields, units;
+  size_t lineNo = 0, unitsLine = 0;
+  // Comments before the header; `#units,...` the columns' units.
+  bool got = false;
+  while ((got = static_cast<bool>(std::getline(in, line)))) {
+    ++lineNo;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] != '#') break;
+    if (line.compare(0, 7, "#units,") == 0 && splitCsv(line, units)) {
+      units.erase(units.begin());
+      unitsLine = lineNo;
+    }
+  }
+  if (!got) {
     error = fmt::format("'{}' is empty; expected a trace CSV (header 'time,VAR,...')", path);
     return false;
   }
-  if (!line.empty() && line.back() == '\r') line.pop_back();
   if (!splitCsv(line, fields) || fields.empty() || lower(fields[0]) != "time") {
     error = fmt::format("'{}' is not a trace CSV: the header must start with 'time'", path);
     return false;
   }
   out.names.assign(fields.begin() + 1, fields.end());
   out.columns.assign(out.names.size(), {});
-  size_t lineNo = 1;
+  if (unitsLine && units.size() != out.names.size()) {
+    error = fmt::format("{}:{}: the #units line has {} units for the {} columns of the header", path, unitsLine, units.size(), out.names.size());
+    return false;
+  }
+  out.units = unitsLine ? units : std::vector<std::string>(out.names.size());
   while (std::getline(in, line)) {
     ++lineNo;
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -1039,7 +1381,7 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
           break;
         }
   }
-  for (size_t i : pick) cols.push_back(classify(trace.names[i], trace.columns[i]));
+  for (size_t i : pick) cols.push_back(columnOf(trace, i));
 
   Layout L;
   double maxName = 0;
@@ -1066,9 +1408,11 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
     Column& c = cols[i];
     if (c.kind != Kind::Number) continue;
     c.color = colorIndex++;
+    // One panel per kind and unit: positions in mm and in degrees do not share an axis.
     int k = kindOf(c);
-    auto it = std::find_if(panels.begin(), panels.end(), [&](const Panel& p) { return p.kind == k; });
-    if (it == panels.end() || (k == 7 && others <= 4)) panels.push_back({k, {i}});
+    std::string unit = unitOf(k, c);
+    auto it = std::find_if(panels.begin(), panels.end(), [&](const Panel& p) { return p.kind == k && p.unit == unit; });
+    if (it == panels.end() || (k == 7 && others <= 4)) panels.push_back({k, {i}, unit, {}});
     else it->series.push_back(i);
   }
   for (size_t i : bools) cols[i].color = colorIndex++;
@@ -1085,7 +1429,14 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
   double yy = lanesTop;
   std::vector<double> laneTops, bandTops;
   for (size_t n = 0; n < bools.size(); ++n) laneTops.push_back(yy), yy += laneH + laneGap;
-  for (size_t n = 0; n < states.size(); ++n) bandTops.push_back(yy), yy += bandH + laneGap;
+  double boolLegendTop = yy;
+  if (!bools.empty()) yy += kLegendRowH + laneGap;
+  std::vector<StateLegend> stateLegends;
+  for (size_t n = 0; n < states.size(); ++n) {
+    bandTops.push_back(yy);
+    stateLegends.push_back(stateLegend(cols[states[n]], L.plotW));
+    yy += bandH + 2 + kLegendRowH * static_cast<double>(stateLegends.back().rows.size()) + laneGap;
+  }
   double bottom = (bools.empty() && states.empty()) ? lanesTop - 14 : yy - laneGap;
   if (cols.empty()) bottom = top0 + 40;
   double height = bottom + 48;
@@ -1094,32 +1445,36 @@ std::string renderSvg(const TraceTable& trace, const PlotOptions& options) {
   openSvg(s, L.width, height, L.left, options.title, windowText(w));
   if (cols.empty()) s.add(R"(<text x="{}" y="{}">no variables</text>)", num(L.left), num(top0 + 20));
 
-  // The shared time axis: grid through every panel and lane, labels at the bottom.
-  double xstep = chooseStep(L.t0, L.t1, L.plotW, 14, true, std::max(2, static_cast<int>(L.plotW / 90)));
-  // A trace of 10 s at 1 ms ends at 9.999 s: without --to, the axis runs on to
-  // the next round tick when that is close (2 % of the range).
-  if (!options.to) {
-    double end = std::ceil(L.t1 / xstep - 1e-9) * xstep;
-    if (end > L.t1 && end - L.t1 <= 0.02 * (L.t1 - L.t0)) L.t1 = end;
-  }
-  double gridTop = top0, gridBottom = bottom;
-  s.add(R"(<g class="time-axis">)");
-  for (double t : ticks(L.t0, L.t1, xstep)) {
-    xTick(s, L.x(t), gridTop, gridBottom, "#eeeeee", tickLabel(t, xstep));
-  }
-  s.add(R"(<text class="xlabel" x="{}" y="{}" text-anchor="middle">time [s]</text>)", num(L.left + L.plotW / 2), num(gridBottom + 34));
-  s.add("</g>");
+  const std::vector<double> timeTicks = drawTimeAxis(s, L, top0, bottom, !options.to);
   // The grid is drawn first; panels paint their white background over it and
   // draw their own vertical grid below the series.
   for (size_t i = 0; i < panels.size(); ++i) {
     auto [top, h] = panelBoxes[i];
-    drawNumeric(s, L, panels[i], cols, trace.time, top, h, static_cast<int>(i), ticks(L.t0, L.t1, xstep));
+    drawNumeric(s, L, panels[i], cols, trace.time, top, h, static_cast<int>(i), timeTicks);
   }
   for (size_t n = 0; n < bools.size(); ++n) drawBool(s, L, cols[bools[n]], trace.time, laneTops[n], laneH);
-  for (size_t n = 0; n < states.size(); ++n) drawState(s, L, cols[states[n]], trace.time, bandTops[n], bandH);
+  if (!bools.empty()) drawBoolLegend(s, L.left, boolLegendTop);
+  for (size_t n = 0; n < states.size(); ++n) {
+    drawState(s, L, cols[states[n]], trace.time, bandTops[n], bandH);
+    drawStateLegend(s, L.left, bandTops[n] + bandH + 2, cols[states[n]], stateLegends[n]);
+  }
   s.add("</svg>");
   return std::move(s.out);
 }
+
+namespace {
+bool writeSvg(const std::string& path, const std::string& svg, std::string& error) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) {
+    error = fmt::format("cannot open '{}': {}", path, std::strerror(errno));
+    return false;
+  }
+  bool ok = std::fwrite(svg.data(), 1, svg.size(), f) == svg.size();
+  ok = std::fclose(f) == 0 && ok;
+  if (!ok) error = fmt::format("cannot write '{}': {}", path, std::strerror(errno));
+  return ok;
+}
+}  // namespace
 
 bool parseSeconds(const std::string& text, double& out) {
   vm::Time ns = 0;
@@ -1158,7 +1513,7 @@ int plotFiles(const std::string& csvPath, const std::string& svgPath, const Plot
     for (const std::string* v : {&x, &y}) {
       size_t i = findColumn(t, *v);
       if (i == std::string::npos) return unknown("--xy", *v);
-      if (classify(t.names[i], t.columns[i]).kind != Kind::Number) {
+      if (columnOf(t, i).kind != Kind::Number) {
         error = fmt::format("--xy: '{}' in '{}' is not a numeric column", t.names[i], csvPath);
         return 2;
       }
@@ -1166,7 +1521,7 @@ int plotFiles(const std::string& csvPath, const std::string& svgPath, const Plot
   if (!options.rapid.empty()) {
     size_t i = findColumn(t, options.rapid);
     if (i == std::string::npos) return unknown("--rapid", options.rapid);
-    if (classify(t.names[i], t.columns[i]).kind == Kind::State) {
+    if (columnOf(t, i).kind == Kind::State) {
       error = fmt::format("--rapid: '{}' in '{}' is not a BOOL or numeric column", t.names[i], csvPath);
       return 2;
     }
@@ -1191,18 +1546,47 @@ int plotFiles(const std::string& csvPath, const std::string& svgPath, const Plot
     o.title = slash == std::string::npos ? named : named.substr(slash + 1);
   }
   std::string svg = options.gcode.empty() ? renderSvg(t, o) : renderPathSvg(t, o, &prog);
-  std::FILE* f = std::fopen(svgPath.c_str(), "wb");
-  if (!f) {
-    error = fmt::format("cannot open '{}': {}", svgPath, std::strerror(errno));
-    return 1;
+  return writeSvg(svgPath, svg, error) ? 0 : 1;
+}
+
+std::string renderCompareSvg(const TraceTable& expected, const TraceTable& actual, const PlotOptions& options, double tolerance,
+                             const std::string& expectedName, const std::string& actualName) {
+  return renderCompare(expected, actual, options, tolerance, expectedName, actualName);
+}
+
+int compareTraceFiles(const std::string& expectedCsv, const std::string& actualCsv, const std::string& svgPath, const PlotOptions& options,
+                      double tolerance, std::string& error) {
+  if (!(tolerance >= 0) || !std::isfinite(tolerance)) {
+    error = fmt::format("--tolerance: {} is not a finite number >= 0", tolerance);
+    return 2;
   }
-  bool ok = std::fwrite(svg.data(), 1, svg.size(), f) == svg.size();
-  ok = std::fclose(f) == 0 && ok;
-  if (!ok) {
-    error = fmt::format("cannot write '{}': {}", svgPath, std::strerror(errno));
-    return 1;
+  TraceTable e, a;
+  bool missing = false;
+  if (!readTraceCsv(expectedCsv, e, error, missing) || !readTraceCsv(actualCsv, a, error, missing)) return missing ? 2 : 1;
+  for (const std::string& v : options.vars)
+    if (findColumn(e, v) == std::string::npos && findColumn(a, v) == std::string::npos) {
+      std::vector<std::string> all = e.names;
+      all.insert(all.end(), a.names.begin(), a.names.end());
+      std::string hint = config::closest(v, all);
+      error = fmt::format("--vars: no column '{}' in '{}' or '{}'{}", v, expectedCsv, actualCsv,
+                          hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint));
+      return 2;
+    }
+  if (options.from && options.to && *options.from >= *options.to) {
+    error = "--from must be before --to";
+    return 2;
   }
-  return 0;
+  for (const auto& [t, path] : {std::pair{&e, &expectedCsv}, std::pair{&a, &actualCsv}})
+    if (t->time.empty()) {
+      error = fmt::format("'{}' has no samples", *path);
+      return 1;
+    }
+  auto base = [](const std::string& p) {
+    size_t slash = p.find_last_of('/');
+    return slash == std::string::npos ? p : p.substr(slash + 1);
+  };
+  std::string svg = renderCompare(e, a, options, tolerance, base(expectedCsv), base(actualCsv));
+  return writeSvg(svgPath, svg, error) ? 0 : 1;
 }
 
 void PlotCommand::add(CLI::App& app) {
@@ -1232,6 +1616,17 @@ void PlotCommand::add(CLI::App& app) {
   cmd->add_option("--rapid", rapid, "Trace column that is TRUE while a G0 move runs: those parts of the --xy paths are dashed")
       ->type_name("COL")
       ->needs(xyOpt);
+  CLI::Option* compareOpt =
+      cmd->add_option("--compare", compare,
+                      "Draw an expected and an actual trace over each other, the time spans where they differ shaded")
+          ->type_name("EXPECTED ACTUAL")
+          ->expected(2)
+          ->allow_extra_args(false)
+          ->excludes(xyOpt)
+          ->excludes(gcodeOpt);
+  cmd->add_option("--tolerance", tolerance, "With --compare: numbers within TOL x max(1, |expected|) are equal (default 1e-9)")
+      ->type_name("TOL")
+      ->needs(compareOpt);
   cmd->footer(
       "Examples:\n"
       "  stc plot trace.csv --vars Axis1.fSetPosition,Axis1.fSetVelocity\n"
@@ -1239,6 +1634,7 @@ void PlotCommand::add(CLI::App& app) {
       "  stc plot --gcode part.cnc                   the program's X/Y tool path alone (part.svg)\n"
       "  stc plot --gcode part.cnc --gcode-axes X,Z  the X/Z plane\n"
       "  stc plot trace.csv --xy X.fActPosition,Y.fActPosition --gcode part.cnc --rapid MAIN.bRapid\n"
+      "  stc plot --compare expected/run.csv actual.csv -o diff.svg --tolerance 1e-6\n"
       "G-code: feed moves solid, G0 dashed; decode errors are printed as by stc check (exit 1). See docs/cnc.md.");
 }
 
@@ -1255,11 +1651,55 @@ bool parseXyPairs(const std::vector<std::string>& pairs, PlotOptions& options, s
   return true;
 }
 
+bool PlotCommand::parseWindow(PlotOptions& o, std::string& error) const {
+  for (auto [opt, text, dst] : {std::tuple{"--from", &from, &o.from}, std::tuple{"--to", &to, &o.to}}) {
+    if (text->empty()) continue;
+    double v;
+    if (!parseSeconds(*text, v)) {
+      error = fmt::format("{}: '{}' is not a time (e.g. 1.5s, 250ms, 2)", opt, *text);
+      return false;
+    }
+    *dst = v;
+  }
+  return true;
+}
+
+int PlotCommand::runCompare() const {
+  auto usage = [](const std::string& msg) {
+    std::fprintf(stderr, "stc: error: %s\n", msg.c_str());
+    return 2;
+  };
+  if (!trace.empty())
+    return usage(fmt::format("--compare takes the two traces (EXPECTED ACTUAL); '{}' is one too many", trace));
+  if (compare.size() != 2) return usage("--compare needs two traces: EXPECTED ACTUAL");
+  if (!rapid.empty()) return usage("--rapid draws --xy paths; it does not go with --compare");
+  double tol = 1e-9;
+  if (!tolerance.empty() && (!parseDouble(tolerance, tol) || !std::isfinite(tol) || tol < 0))
+    return usage(fmt::format("--tolerance: '{}' is not a finite number >= 0 (e.g. 1e-6)", tolerance));
+  PlotOptions o;
+  o.vars = vars;
+  o.title = title;
+  std::string err;
+  if (!parseWindow(o, err)) return usage(err);
+  std::string out = output;
+  if (out.empty()) {
+    // actual.csv -> actual.compare.svg
+    out = compare[1];
+    size_t dot = out.find_last_of('.'), slash = out.find_last_of('/');
+    if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) out.erase(dot);
+    out += ".compare.svg";
+  }
+  int rc = compareTraceFiles(compare[0], compare[1], out, o, tol, err);
+  if (rc) std::fprintf(stderr, "stc: error: %s\n", err.c_str());
+  return rc;
+}
+
 int PlotCommand::run() const {
   auto usage = [](const std::string& msg) {
     std::fprintf(stderr, "stc: error: %s\n", msg.c_str());
     return 2;
   };
+  if (!compare.empty()) return runCompare();
   if (trace.empty() && gcode.empty()) return usage("plot: give a trace CSV, --gcode FILE, or both (stc plot --help)");
   if (trace.empty())
     for (auto [opt, given] : {std::pair{"--xy", !xy.empty()}, std::pair{"--vars", !vars.empty()}, std::pair{"--from", !from.empty()},
@@ -1292,12 +1732,8 @@ int PlotCommand::run() const {
       return usage(fmt::format("--gcode-var: '{}' is not NAME=VALUE with a finite number", nv));
     o.gcodeVars.emplace_back(name, v);
   }
-  for (auto [opt, text, dst] : {std::tuple{"--from", &from, &o.from}, std::tuple{"--to", &to, &o.to}}) {
-    if (text->empty()) continue;
-    double v;
-    if (!parseSeconds(*text, v)) return usage(fmt::format("{}: '{}' is not a time (e.g. 1.5s, 250ms, 2)", opt, *text));
-    *dst = v;
-  }
+  std::string windowError;
+  if (!parseWindow(o, windowError)) return usage(windowError);
   std::string out = output;
   if (out.empty()) {
     out = trace.empty() ? gcode : trace;

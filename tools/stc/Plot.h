@@ -40,12 +40,15 @@ struct PlotOptions {
 // A trace as read from CSV: the time column in seconds, the other columns as text.
 struct TraceTable {
   std::vector<std::string> names;
+  std::vector<std::string> units;   // per column: its axis unit from a `#units` line ("" none)
   std::vector<double> time;
   std::vector<std::vector<std::string>> columns;   // columns[c][row]
 };
 
 // Reads a trace CSV.  False with `error` set if the file cannot be read
-// (`missing` true) or is not a trace (no `time` column, bad rows).
+// (`missing` true) or is not a trace (no `time` column, bad rows).  Lines
+// before the header that start with '#' are comments; `#units,U1,U2,...`
+// gives the columns' units.
 bool readTraceCsv(const std::string& path, TraceTable& out, std::string& error, bool& missing);
 
 // The SVG document for `trace` (options.vars and options.xy must name existing columns).
@@ -66,6 +69,25 @@ int plotTraceFile(const std::string& csvPath, const std::string& svgPath, const 
 int plotFiles(const std::string& csvPath, const std::string& svgPath, const PlotOptions& options, std::string& error,
               std::string& diagnostics);
 
+// --compare: the expected and the actual trace of the same variables drawn
+// over each other (expected dashed), one panel, pair of lanes or pair of bands
+// per variable (matched by name, case-insensitive; one only in one trace is
+// drawn alone and listed), on the merged sample times (a sample holds until
+// the next one).  Where they differ by more than `tolerance` (numbers:
+// |actual - expected| <= tolerance * max(1, |expected|) is equal, as stc
+// test; anything else: the text) the time span is shaded; the title says how
+// many variables differ.  options.vars picks variables; options.xy/gcode are
+// not used.
+std::string renderCompareSvg(const TraceTable& expected, const TraceTable& actual, const PlotOptions& options, double tolerance,
+                             const std::string& expectedName, const std::string& actualName);
+
+// Reads both traces, writes the comparison to `svgPath`.  0 ok; 1 a trace is
+// not readable or has no samples, or the SVG cannot be written; 2 a bad
+// request (a missing trace file, a --vars name in neither trace, a tolerance
+// that is not a finite number >= 0, --from after --to).
+int compareTraceFiles(const std::string& expectedCsv, const std::string& actualCsv, const std::string& svgPath, const PlotOptions& options,
+                      double tolerance, std::string& error);
+
 // Seconds from the command line: a duration (1.5s, 250ms, T#2s) or a plain number of seconds.
 bool parseSeconds(const std::string& text, double& out);
 
@@ -82,9 +104,15 @@ struct PlotCommand {
   std::string from, to;
   std::string gcode, gcodeAxes, rapid;
   std::vector<std::string> gcodeVars;   // "NAME=VALUE" per --gcode-var
+  std::vector<std::string> compare;     // --compare EXPECTED ACTUAL
+  std::string tolerance;                // --tolerance (with --compare)
   CLI::App* cmd = nullptr;
   void add(CLI::App& app);
   int run() const;
+
+private:
+  int runCompare() const;
+  bool parseWindow(PlotOptions& o, std::string& error) const;   // --from/--to into o
 };
 
 }  // namespace stc::plot

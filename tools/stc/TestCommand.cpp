@@ -301,11 +301,14 @@ struct TraceTable {
 
 bool parseTrace(const std::string& text, TraceTable& t, std::string& error) {
   std::vector<std::string> lines = splitLines(text);
-  if (lines.empty()) return error = "is empty", false;
-  std::vector<std::string> head = splitCsvLine(lines[0]);
-  if (head.empty() || head[0] != "time") return error = "line 1: the header does not start with 'time'", false;
+  // Metadata lines before the header (`#units,...`, docs/projects.md "Traces and plots").
+  size_t first = 0;
+  while (first < lines.size() && !lines[first].empty() && lines[first][0] == '#') ++first;
+  if (first >= lines.size()) return error = "is empty", false;
+  std::vector<std::string> head = splitCsvLine(lines[first]);
+  if (head.empty() || head[0] != "time") return error = fmt::format("line {}: the header does not start with 'time'", first + 1), false;
   t.names.assign(head.begin() + 1, head.end());
-  for (size_t r = 1; r < lines.size(); ++r) {
+  for (size_t r = first + 1; r < lines.size(); ++r) {
     if (lines[r].empty() && r + 1 == lines.size()) break;
     std::vector<std::string> f = splitCsvLine(lines[r]);
     vm::Time at = 0;
