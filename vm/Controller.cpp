@@ -136,19 +136,25 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
   std::unique_ptr<TraceWriter> trace;
   if (!opts.traces.empty()) {
     std::vector<TraceColumn> cols;
-    // The units the libraries configure (axes): a traced variable at or under
-    // one of their paths takes the unit of the longest.
-    std::vector<std::pair<std::string, std::string>> units;
-    for (const auto& s : sessions_)
-      for (auto& u : s->units()) units.emplace_back(asciiLower(u.first), std::move(u.second));
-    auto unitOf = [&units](const std::string& var) {
-      const std::string v = asciiLower(var);
-      size_t best = 0;
+    // The units the libraries configure (axes): a traced variable inside one of their
+    // variables (by memory, so `Axis1.x` and `GVL.Axis1.x` alike) takes the unit of the
+    // innermost.
+    struct UnitSpan {
+      uint64_t begin, end;
       std::string unit;
-      for (const auto& [path, u] : units) {
-        const bool under = v.size() == path.size() || (v.size() > path.size() && (v[path.size()] == '.' || v[path.size()] == '['));
-        if (path.size() > best && under && v.compare(0, path.size(), path) == 0) best = path.size(), unit = u;
+    };
+    std::vector<UnitSpan> units;
+    for (const auto& s : sessions_)
+      for (auto& [path, unit] : s->units()) {
+        ValueRef r;
+        std::string e;
+        if (resolvePath(module_->image, layout, path, r, e) && r.type) units.push_back({r.offset, r.offset + layout.sizeOf(r.type), unit});
       }
+    auto unitOf = [&units](const ValueRef& ref) {
+      uint64_t best = UINT64_MAX;
+      std::string unit;
+      for (const UnitSpan& u : units)
+        if (ref.offset >= u.begin && ref.offset < u.end && u.end - u.begin < best) best = u.end - u.begin, unit = u.unit;
       return unit;
     };
     for (const std::string& w : opts.traces) {
@@ -167,7 +173,7 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
       else if (u->isReal()) c.kind = TraceColumn::Real, c.bits = u->bits();
       else if (u->isElementary() && !u->isString()) c.kind = TraceColumn::Int, c.bits = u->bits(), c.isSigned = u->isSignedInt() || u->isDuration();
       else c.kind = TraceColumn::Text;
-      c.unit = unitOf(w);
+      c.unit = unitOf(ref);
       cols.push_back(c);
       traced.push_back(ref);
     }
