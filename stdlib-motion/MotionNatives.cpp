@@ -98,8 +98,15 @@ bool MotionSession::start(const vm::StartCtx& sc, std::string& error) {
     std::string type;
     void* ref = sc.lookup(cfg.name, type);
     if (!ref) {
-      error = "project.toml: axis '" + cfg.name + "' has no variable of that name in the program (declare it, e.g. '" + cfg.name +
-              " : AXIS_REF_SM3;' in a VAR_GLOBAL, or add the library that declares the axis type)";
+      // The place of the [[axis]] table and the lookup's "did you mean".
+      const size_t i = static_cast<size_t>(&cfg - cfg_.axes.data());
+      std::string why;
+      vm::StartCtx::Variable v;
+      if (sc.lookupVariable) sc.lookupVariable(cfg.name, v, why);
+      const size_t hint = why.find("; did you mean");
+      error = (i < cfg_.axisWhere.size() ? cfg_.axisWhere[i] : std::string("project.toml: ")) + "[[axis]] '" + cfg.name +
+              "' has no variable of that name in the program" + (hint == std::string::npos ? std::string() : why.substr(hint)) +
+              " (declare it, e.g. '" + cfg.name + " : AXIS_REF_SM3;' in a VAR_GLOBAL, or add the library that declares the axis type)";
       return false;
     }
     const auto& faces = lib_.axisFaces();
