@@ -138,14 +138,28 @@ bool Compilation::addPath(const std::string& path) {
     bool ok = true;
     for (const std::string& s : pc.sources) ok = addPath(s) && ok;
     // The project's G-code programs: nc/*.cnc, *.ngc, *.nc (docs/cnc.md).
+    // Only files inside the project are read: a symbolic link out of it is an error, never
+    // followed (docs/security.md), as the run refuses it.
+    const fs::path root = fs::weakly_canonical(fs::path(path), ec);
+    auto inside = [&](const std::string& file) {
+      const fs::path real = fs::weakly_canonical(fs::path(file), ec);
+      const auto [r, f] = std::mismatch(root.begin(), root.end(), real.begin(), real.end());
+      if (!ec && r == root.end()) return true;
+      diags_.error(SourceLoc{}, file + ": leads outside the project directory '" + path + "'; not read", "input");
+      return false;
+    };
     std::vector<std::string> nc;
     for (const fs::directory_entry& e : fs::directory_iterator(fs::path(path) / "nc", ec))
       if (e.is_regular_file(ec) && isGCodeFile(e.path())) nc.push_back(e.path().string());
     std::sort(nc.begin(), nc.end());
     const size_t before = gcodeFiles_.size();
-    for (const std::string& s : nc) ok = addPath(s) && ok;
+    for (const std::string& s : nc) ok = (inside(s) && addPath(s)) && ok;
     // [[cnc_program]] files: G-code whatever their extension, decoded with their defaults.
     for (const ProjectConfig::CncProgram& p : pc.cncPrograms) {
+      if (!inside(p.path)) {
+        ok = false;
+        continue;
+      }
       uint32_t id = 0;
       for (size_t i = before; i < gcodeFiles_.size() && !id; ++i)
         if (fs::equivalent(fs::path(p.path), fs::path(sm_.file(gcodeFiles_[i]).path), ec)) id = gcodeFiles_[i];
