@@ -102,7 +102,11 @@ bool Planner::sameLimits(const Slot& a, const Slot& b) const {
   const double lo = std::min({a.vcap, b.vcap, a.juncCap});
   auto fits = [&](const Slot& x) {
     if (x.vcap * kRunSpread <= lo) return true;
-    return x.geo.length() < 2 * transDist(lo, x.vcap, std::min(x.acc, x.dec), x.jerk);
+    // Jerk-limited: a slot too short for the transition to its own cap and back joins the
+    // run (its profile could not be planned alone from a state with acceleration).
+    // Trapezoidal slots are never merged for that: a run's velocity is the lowest cap in
+    // it, and a chain of short slots behind one tight curve then crept at that curve's cap.
+    return x.jerk > 0 && x.geo.length() < 2 * transDist(lo, x.vcap, std::min(x.acc, x.dec), x.jerk);
   };
   return fits(a) && fits(b);
 }
