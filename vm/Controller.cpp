@@ -321,6 +321,16 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
     if (!retainFailed) err << "stc: error: cannot save retain file: " << e << "\n";
     retainFailed = true;
   };
+  // Periods given on the command line fall on ticks of the tasks: a period shorter than or
+  // between the tasks' ticks would make the controller tick at that period (a 1 ns period:
+  // a billion ticks per second of simulated time) for nothing the program could see.
+  const Time taskTick = sched_->baseTick();
+  for (const auto& [option, every] : {std::pair{"--retain-every", opts.retainEvery}, std::pair{"--watch-every", opts.watchEvery}})
+    if (every && *every > 0 && *every % taskTick != 0) {
+      err << "stc: error: " << option << " " << formatIecTime(*every) << " is not a multiple of the tasks' tick " << formatIecTime(taskTick)
+          << "\n";
+      return 2;
+    }
   if (!opts.retainFile.empty() && opts.retainEvery && *opts.retainEvery > 0) {
     // Periodic saves at tick boundaries: a killed process loses at most one period.
     Time every = *opts.retainEvery;
@@ -340,12 +350,11 @@ int Controller::run(const RunOptions& opts, std::ostream& out, std::ostream& err
     // The watches on one line at every multiple of D (with --realtime: a live view).
     Time every = *opts.watchEvery;
     auto next = std::make_shared<Time>(every);
-    sched_->addTickPeriod(every);
     tickFn_ = [this, next, every, &watches, &opts, &out, tick = std::move(tickFn_)](Time now) {
       if (tick) tick(now);
       const Time end = now + sched_->baseTick();   // the values after this tick are those of `end`
       if (end < *next) return;
-      const Time at = end / every * every;         // D shorter than a tick: one line per tick
+      const Time at = end / every * every;
       out << "[" << formatIecTime(at) << "]";
       for (size_t k = 0; k < watches.size(); ++k) out << (k ? "; " : " ") << opts.watches[k] << " = " << valueText(watches[k]);
       out << "\n";
