@@ -12,6 +12,9 @@ bool loadProjectCncPrograms(const std::string& dir, std::vector<CncProgramConfig
   toml::table tbl;
   const toml::array* arr = projectTables(dir, "cnc_program", tbl, file);
   if (!arr) return true;
+  // The controller holds every program for the run: their sum is bounded like one file.
+  constexpr uint64_t kMaxHeldBytes = 256ull << 20;
+  uint64_t held = 0;
   for (const toml::node& n : *arr) {
     const toml::table* t = n.as_table();
     const std::string here = tomlWhere(file, n);
@@ -28,6 +31,8 @@ bool loadProjectCncPrograms(const std::string& dir, std::vector<CncProgramConfig
     case vm::ReadResult::Failed: return error = here + "cannot read cnc_program file '" + *name + "'", false;
     case vm::ReadResult::TooBig: return error = here + "cnc_program file '" + *name + "' is larger than 64 MiB", false;
     }
+    held += text->size();
+    if (held > kMaxHeldBytes) return error = here + "the [[cnc_program]] files are larger than 256 MiB together", false;
     CncProgramConfig c;
     c.var = *var;
     c.name = *name;
