@@ -402,5 +402,73 @@ TEST(ToolCorrProperty, ToolCentreStaysAtTheRadius) {
   EXPECT_GT(samples, 10000);
 }
 
+// Star-shaped contours of lines and arcs bulging either way: concave and convex corners
+// alternate, so half the corners are inside ones (cut at the intersection of the offset
+// elements) whichever side the tool is on.
+// No gouge: every point of the tool centre's path stays exactly at the radius from the
+// programmed contour (an inside corner cut too short or too long would come closer or leave).
+TEST(ToolCorrProperty, StarContoursKeepTheRadiusAtInsideAndOutsideCorners) {
+  std::mt19937 rng(61);
+  std::uniform_real_distribution<double> U(0, 1);
+  int samples = 0;
+  for (int prog = 0; prog < 200; ++prog) {
+    const int n = 5 + static_cast<int>(U(rng) * 5);   // star points
+    const double outer = 20 + 30 * U(rng), inner = outer * (0.5 + 0.3 * U(rng));
+    std::vector<std::pair<double, double>> pts;
+    for (int i = 0; i < 2 * n; ++i) {
+      const double a = kPi * (i + 0.2 * (U(rng) - 0.5)) / n;
+      const double rr = i % 2 ? inner : outer;
+      pts.push_back({rr * std::cos(a), rr * std::sin(a)});
+    }
+    // A radius small against every edge and against the inside corners' reach.
+    double shortest = 1e300;
+    for (size_t i = 0; i < pts.size(); ++i) {
+      const auto& p0 = pts[i];
+      const auto& p1 = pts[(i + 1) % pts.size()];
+      shortest = std::min(shortest, std::hypot(p1.first - p0.first, p1.second - p0.second));
+    }
+    const bool left = U(rng) < 0.5;
+    const double r = std::round((0.01 + 0.1 * U(rng)) * shortest * 1e6) / 1e6;
+    std::ostringstream g;
+    const double mx = (pts[0].first + pts[1].first) / 2, my = (pts[0].second + pts[1].second) / 2;
+    g << std::fixed << std::setprecision(6) << "N1 G0 X" << mx << " Y" << my << "\n";
+    g << "N2 " << (left ? "G41" : "G42") << " D" << r << "\n";
+    for (size_t i = 1; i <= pts.size(); ++i) {
+      const auto& q = pts[i % pts.size()];
+      const auto& p0 = pts[i - 1];
+      const double chord = std::hypot(q.first - p0.first, q.second - p0.second);
+      const double pick = U(rng);
+      // Lines, and arcs bulging outwards (G3) or inwards (G2) of radius 2..6 chords; the
+      // first edge is a line, collinear with the closing one (start and end in its middle).
+      if (i == 1 || i == pts.size() || pick < 0.5)
+        g << "N" << 10 + i << " G1 X" << q.first << " Y" << q.second << " F10\n";
+      else
+        g << "N" << 10 + i << (pick < 0.75 ? " G3" : " G2") << " X" << q.first << " Y" << q.second << " R" << chord * (2 + 4 * U(rng))
+          << " F10\n";
+    }
+    g << "N80 G1 X" << mx << " Y" << my << "\n";
+    g << "N90 G40\nN91 G0 X0 Y0\n";
+    Decoded d(g.str());
+    ASSERT_EQ(d.errors(), 0u) << d.all();
+    std::vector<Element> contour;
+    for (const Element& e : d.els)
+      if (e.type == L || e.type == CW || e.type == CCW) contour.push_back(e);
+    ToolCorrError err{};
+    auto out = correctAll(d.els, ToolCorrMode::BlindPos, 0, &err);
+    ASSERT_EQ(err, ToolCorrError::None) << g.str();
+    expectChained(out);
+    expectConsistent(out);
+    for (const Element& e : out) {
+      if (e.type == P) continue;
+      for (int k = 0; k <= 10; ++k) {
+        const Vec3 q = xyz(point(e, k / 10.0));
+        ASSERT_NEAR(distToContour(q, contour), r, 1e-9) << g.str() << " element line " << e.line << " u " << k / 10.0;
+        ++samples;
+      }
+    }
+  }
+  EXPECT_GT(samples, 10000);
+}
+
 }  // namespace
 }  // namespace stc::cnc::test
