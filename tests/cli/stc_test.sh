@@ -70,7 +70,7 @@ diff)
   run 0 "$TMP/q"
   sed -i 's/^tolerance = 1e-3/tolerance = 1e-9/' "$TMP/q/scenarios/move.toml"
   run 1 "$TMP/q"
-  has "    Axis1.fSetPosition: 1 rows differ, first at T#500ms (cycle 501): expected "
+  has "    Axis1.fSetPosition: 1 row differs, first at T#500ms (cycle 501): expected "
   # Bounded: at most 20 variables, then a count.
   mkdir -p "$TMP/w/src"
   echo '[project]' >"$TMP/w/project.toml"

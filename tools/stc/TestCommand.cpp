@@ -430,7 +430,7 @@ bool compareTraces(const std::string& expectedText, const std::string& actualTex
         continue;
       }
       ++shown;
-      report += fmt::format("    {}: {} rows differ, first at {}: expected {}, actual {}", a.names[common[c].second], d.rows,
+      report += fmt::format("    {}: {} {}, first at {}: expected {}, actual {}", a.names[common[c].second], d.rows, d.rows == 1 ? "row differs" : "rows differ",
                             whenText(d.first, g.base), shortValue(d.expected), shortValue(d.actual));
       report += d.rows > 1 ? fmt::format("; last at {}\n", whenText(d.last, g.base)) : std::string("\n");
     }
