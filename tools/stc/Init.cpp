@@ -52,6 +52,7 @@ programs = ["Main"]
 name = "Axis{0}"                     # the AXIS_REF_SM3 variable of src/GVL.st
 type = "servo"                      # servo | virtual | encoder | pulse
 task = "Main"                       # the task whose programs command it
+# unit = "mm"                      # the positions' unit, shown by stc plot (default "u")
 max_velocity = 1000.0               # u/s (u: the unit of the positions, e.g. mm)
 max_acceleration = 10000.0          # u/s^2
 max_deceleration = 10000.0
