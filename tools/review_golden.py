@@ -73,8 +73,10 @@ def review(project, name, rev):
     tol = float(scen.get("tolerance", 1e-9))
     sample = scen.get("sample")
     rel = (project / "expected" / f"{name}.csv").resolve().relative_to(repo_root())
-    old_text = subprocess.run(["git", "show", f"{rev}:{rel}"], capture_output=True, text=True, check=True,
-                              cwd=repo_root()).stdout
+    shown = subprocess.run(["git", "show", f"{rev}:{rel}"], capture_output=True, text=True, cwd=repo_root())
+    if shown.returncode != 0:
+        return None   # no golden file at that revision: nothing to review against
+    old_text = shown.stdout
     new_text = (project / "expected" / f"{name}.csv").read_text()
     oh, old = read_csv(old_text)
     nh, new = read_csv(new_text)
