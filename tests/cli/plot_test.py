@@ -352,6 +352,13 @@ def case_units():
     print("ok")
 
 
+def read_rows(path):
+    """The data rows of a trace CSV (after the header) as lists of fields."""
+    with open(path) as f:
+        lines = [l.rstrip("\n") for l in f if l.strip() and not l.startswith("#")]
+    return [l.split(",") for l in lines[1:]]
+
+
 def compare_traces():
     """Expected and actual: the position differs from 3 s to 5 s, the state from 6 s on,
     MAIN.bRun is equal, MAIN.old is only expected, MAIN.extra only actual."""
@@ -425,6 +432,18 @@ def case_compare():
     short = write_csv("short.csv", ["A", "B"], [["0", "1.0", "1"], ["0.5", "NaN", "1"]])
     rc, out = stc("plot", "--compare", one_e, short, "-o", svg)
     expect(rc == 0, f"lengths: {rc} {out}")
+    # A golden file sampled every 10th row against the full trace of the same run: compared only
+    # at the sampled times (held samples are not the ramp between them), so no differences; a
+    # changed sampled value is still found.
+    sampled = write_csv("sampled.csv", ["Axis1.fActPosition"], [[r[0], r[1]] for r in
+                                                                  [row for k, row in enumerate(read_rows(e)) if k % 10 == 0]])
+    rc, out = stc("plot", "--compare", sampled, e, "-o", svg, "--vars", "Axis1.fActPosition")
+    expect(rc == 0 and texts(parse(svg), "title")[0].endswith(": no differences"), f"sampled: {rc} {out} {texts(parse(svg), 'title')}")
+    changed = [[r[0], r[1]] for r in [row for k, row in enumerate(read_rows(e)) if k % 10 == 0]]
+    changed[50][1] = "123.0"
+    rc, out = stc("plot", "--compare", write_csv("changed.csv", ["Axis1.fActPosition"], changed), e, "-o", svg,
+                  "--vars", "Axis1.fActPosition")
+    expect(rc == 0 and texts(parse(svg), "title")[0].endswith(": 1 of 1 variable differs"), f"sampled change: {rc} {out} {texts(parse(svg), 'title')}")
     print("ok")
 
 
