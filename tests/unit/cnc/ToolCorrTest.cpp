@@ -347,6 +347,29 @@ double distToContour(Vec3 p, const std::vector<Element>& contour) {
   return best;
 }
 
+// Corrects `program` (a closed contour under G41/G42 D r, TC_BLIND_POS) and checks every
+// tool-centre sample is at r from the programmed contour; counts the samples.
+void expectAtTheRadius(const std::string& program, double r, int& samples) {
+  Decoded d(program);
+  ASSERT_EQ(d.errors(), 0u) << d.all();
+  std::vector<Element> contour;
+  for (const Element& e : d.els)
+    if (e.type == L || e.type == CW || e.type == CCW) contour.push_back(e);
+  ToolCorrError err{};
+  auto out = correctAll(d.els, ToolCorrMode::BlindPos, 0, &err);
+  ASSERT_EQ(err, ToolCorrError::None) << program;
+  expectChained(out);
+  expectConsistent(out);
+  for (const Element& e : out) {
+    if (e.type == P) continue;
+    for (int k = 0; k <= 10; ++k) {
+      const Vec3 q = xyz(point(e, k / 10.0));
+      ASSERT_NEAR(distToContour(q, contour), r, 1e-9) << program << " element line " << e.line << " u " << k / 10.0;
+      ++samples;
+    }
+  }
+}
+
 TEST(ToolCorrProperty, ToolCentreStaysAtTheRadius) {
   std::mt19937 rng(16);
   std::uniform_real_distribution<double> U(0, 1);
@@ -380,24 +403,7 @@ TEST(ToolCorrProperty, ToolCentreStaysAtTheRadius) {
     }
     g << "N80 G1 X" << mx << " Y" << my << "\n";
     g << "N90 G40\nN91 G0 X0 Y0\n";
-    Decoded d(g.str());
-    ASSERT_EQ(d.errors(), 0u) << d.all();
-    std::vector<Element> contour;
-    for (const Element& e : d.els)
-      if (e.type == L || e.type == CW || e.type == CCW) contour.push_back(e);
-    ToolCorrError err{};
-    auto out = correctAll(d.els, ToolCorrMode::BlindPos, 0, &err);
-    ASSERT_EQ(err, ToolCorrError::None) << g.str();
-    expectChained(out);
-    expectConsistent(out);
-    for (const Element& e : out) {
-      if (e.type == P) continue;
-      for (int k = 0; k <= 10; ++k) {
-        const Vec3 q = xyz(point(e, k / 10.0));
-        ASSERT_NEAR(distToContour(q, contour), r, 1e-9) << g.str() << " element line " << e.line << " u " << k / 10.0;
-        ++samples;
-      }
-    }
+    expectAtTheRadius(g.str(), r, samples);
   }
   EXPECT_GT(samples, 10000);
 }
@@ -448,24 +454,7 @@ TEST(ToolCorrProperty, StarContoursKeepTheRadiusAtInsideAndOutsideCorners) {
     }
     g << "N80 G1 X" << mx << " Y" << my << "\n";
     g << "N90 G40\nN91 G0 X0 Y0\n";
-    Decoded d(g.str());
-    ASSERT_EQ(d.errors(), 0u) << d.all();
-    std::vector<Element> contour;
-    for (const Element& e : d.els)
-      if (e.type == L || e.type == CW || e.type == CCW) contour.push_back(e);
-    ToolCorrError err{};
-    auto out = correctAll(d.els, ToolCorrMode::BlindPos, 0, &err);
-    ASSERT_EQ(err, ToolCorrError::None) << g.str();
-    expectChained(out);
-    expectConsistent(out);
-    for (const Element& e : out) {
-      if (e.type == P) continue;
-      for (int k = 0; k <= 10; ++k) {
-        const Vec3 q = xyz(point(e, k / 10.0));
-        ASSERT_NEAR(distToContour(q, contour), r, 1e-9) << g.str() << " element line " << e.line << " u " << k / 10.0;
-        ++samples;
-      }
-    }
+    expectAtTheRadius(g.str(), r, samples);
   }
   EXPECT_GT(samples, 10000);
 }
