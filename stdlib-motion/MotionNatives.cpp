@@ -87,9 +87,14 @@ bool MotionSession::start(const vm::StartCtx& sc, std::string& error) {
     void* var = sc.lookup(pc.var, type);
     const auto& pf = lib_.cncProgramFaces();
     auto f = std::find_if(pf.begin(), pf.end(), [&](const CncProgramFace& p) { return p.typeName == type; });
-    if (!var || f == pf.end()) {
-      error = "project.toml: cnc_program '" + pc.var + "' has no program variable of that name (declare it, e.g. '" + pc.var +
+    if (!var) {
+      error = "project.toml: cnc_program '" + pc.var + "' has no variable of that name in the program (declare it, e.g. '" + pc.var +
               " : SMC_CNC_REF;' in a VAR_GLOBAL, with the library codesys_sm3 or leadshine)";
+      return false;
+    }
+    if (f == pf.end()) {
+      error = "project.toml: cnc_program '" + pc.var + "' is " + (type.empty() ? std::string("not a variable") : "of type " + type) +
+              ", not SMC_CNC_REF";
       return false;
     }
     f->bound(var, pc);
