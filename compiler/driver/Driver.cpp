@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <map>
 #include <atomic>
 #include <cctype>
 #include <chrono>
@@ -311,22 +312,21 @@ bool namesAny(const std::string& message, const std::set<std::string>& names) {
 }
 
 namespace {
-// Whether the ST text declares `upper` (upper case) as a TYPE, FUNCTION_BLOCK, FUNCTION,
-// INTERFACE or PROGRAM: the keyword, blanks, the name, then no name character.
-bool declaresName(std::string_view text, const std::string& upper) {
+// The names an ST text declares as a TYPE, FUNCTION_BLOCK, FUNCTION, INTERFACE or PROGRAM
+// (upper case): the keyword, blanks, then the name.
+void declaredNames(std::string_view text, const std::string& library, std::map<std::string, std::string>& out) {
   const std::string t = asciiUpper(std::string(text));
+  auto nameChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
   for (const char* kw : {"TYPE ", "FUNCTION_BLOCK ", "FUNCTION ", "INTERFACE ", "PROGRAM "}) {
     for (size_t at = t.find(kw); at != std::string::npos; at = t.find(kw, at + 1)) {
-      if (at > 0 && (std::isalnum(static_cast<unsigned char>(t[at - 1])) || t[at - 1] == '_')) continue;
+      if (at > 0 && nameChar(t[at - 1])) continue;
       size_t b = at + std::strlen(kw);
       while (b < t.size() && (t[b] == ' ' || t[b] == '\t')) ++b;
-      if (t.compare(b, upper.size(), upper) != 0) continue;
-      const size_t e = b + upper.size();
-      if (e < t.size() && (std::isalnum(static_cast<unsigned char>(t[e])) || t[e] == '_')) continue;
-      return true;
+      size_t e = b;
+      while (e < t.size() && nameChar(t[e])) ++e;
+      if (e > b) out.emplace(t.substr(b, e - b), library);
     }
   }
-  return false;
 }
 }  // namespace
 
@@ -459,13 +459,16 @@ bool Compilation::check(const CompileOptions& opts) {
   so.dialect = dialect_;
   so.addressBits = addressBits_;
   // "unknown type 'AXIS_REF_SM3'": which optional library, not compiled in, declares it.
-  so.libraryOf = [libs](const std::string& name) -> std::string {
-    const std::string up = asciiUpper(name);
-    for (size_t i = 0; i < kLibrarySourceCount; ++i) {
-      if (std::find(libs.begin(), libs.end(), kLibrarySources[i].library) != libs.end()) continue;
-      if (declaresName(kLibrarySources[i].text, up)) return kLibrarySources[i].library;
+  // The index of those libraries' names is built once, at the first unknown type.
+  so.libraryOf = [libs, index = std::shared_ptr<std::map<std::string, std::string>>()](const std::string& name) mutable -> std::string {
+    if (!index) {
+      index = std::make_shared<std::map<std::string, std::string>>();
+      for (size_t i = 0; i < kLibrarySourceCount; ++i)
+        if (std::find(libs.begin(), libs.end(), kLibrarySources[i].library) == libs.end())
+          declaredNames(kLibrarySources[i].text, kLibrarySources[i].library, *index);
     }
-    return {};
+    const auto it = index->find(asciiUpper(name));
+    return it == index->end() ? std::string() : it->second;
   };
   if (!parsed) {
     // Like clang, go on after syntax errors: the declarations that parsed
